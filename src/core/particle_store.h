@@ -1,0 +1,48 @@
+#pragma once
+/// The one particle store: every particle of every entity, structure of arrays.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace softsub {
+
+/// Structure-of-arrays particle storage. Slots are reordered (permute) when the
+/// neighbour grid sorts particles by cell; each particle keeps its stable id, which
+/// outputs use for ordering. Arrays are public on purpose: the kernels read them
+/// directly, and every array is reordered in exactly one place (permute()).
+class ParticleStore {
+ public:
+  // Hot data: what the force and integration kernels sweep.
+  std::vector<float> px, py, pz;  ///< position, scene units
+  std::vector<float> vx, vy, vz;  ///< velocity, units/s
+  std::vector<float> fx, fy, fz;  ///< force accumulated this evaluation, mass*units/s^2
+  std::vector<std::uint16_t> material;  ///< row/column in the InteractionTable
+  // Cold data.
+  std::vector<std::uint32_t> owner;  ///< entity index (fluid index in the model)
+  std::vector<std::uint32_t> id;     ///< stable id, 0..size()-1, unique
+
+  /// Number of particles.
+  [[nodiscard]] std::size_t size() const { return px.size(); }
+
+  /// Reserves room for n particles in every array.
+  void reserve(std::size_t n);
+
+  /// Appends a particle and returns its slot; its id is the current size().
+  std::size_t add(float x, float y, float z, float vxi, float vyi, float vzi,
+                  std::uint16_t materialIndex, std::uint32_t ownerIndex);
+
+  /// Reorders every array so that new slot k holds old slot order[k]. `order` must be
+  /// a permutation of 0..size()-1. Uses an internal scratch buffer (no allocation once
+  /// warmed up).
+  void permute(std::span<const std::uint32_t> order);
+
+  /// slotOfId[id] = current slot of that id; filled into `out` (resized to size()).
+  void slotsById(std::vector<std::uint32_t>& out) const;
+
+ private:
+  std::vector<float> scratchF_;
+  std::vector<std::uint32_t> scratchU_;
+  std::vector<std::uint16_t> scratchS_;
+};
+
+}  // namespace softsub

@@ -1,0 +1,118 @@
+#pragma once
+/// SceneDesc: what a .scene file says, as plain data with no behaviour. The reader
+/// fills it (validated), the writer prints it, compile() turns it into Model + State.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "fluid/fluid_params.h"
+#include "forces/function.h"
+
+namespace softsub::scene {
+
+/// Time integration scheme.
+enum class Integrator : std::uint8_t { ExplicitEuler, SymplecticEuler, VelocityVerlet };
+
+/// `<Simulation>`: timing and global forces.
+struct SimulationDesc {
+  double framesPerSecond = 24;            ///< output frames per second
+  int substeps = 8;                       ///< updates per frame (seed -updateNum)
+  int frames = 120;                       ///< frames to simulate
+  Vec3 gravity{0, -9.81, 0};              ///< acceleration, units/s^2
+  Integrator integrator = Integrator::SymplecticEuler;
+  bool operator==(const SimulationDesc&) const = default;
+};
+
+/// `<Camera>`: viewer/renderer start pose; no effect on the simulation.
+struct CameraDesc {
+  Vec3 eye{0, 10, 40};         ///< camera position
+  double verticalAngle = 0;    ///< pitch, degrees
+  double horizontalAngle = 0;  ///< yaw, degrees
+  bool operator==(const CameraDesc&) const = default;
+};
+
+/// `<Environment>`: the container box x in [-W/2,W/2], y in [0,H], z in [-D/2,D/2].
+struct EnvironmentDesc {
+  double width = 20;               ///< x extent
+  double height = 20;              ///< y extent
+  double depth = 20;               ///< z extent
+  bool reflective = false;         ///< mirror floor (rendering only)
+  double normalAttenuation = 0.5;  ///< restitution e in [0,1]
+  double tangentAttenuation = 0.1; ///< friction in [0,1]
+  bool closed = false;             ///< extension: a lid at y = H (a jar)
+  bool operator==(const EnvironmentDesc&) const = default;
+};
+
+/// Shape of a `<Fill>` particle source.
+enum class FillShape : std::uint8_t { Box, Sphere, Mesh };
+
+/// `<Fill>`: a lattice of particles filling a shape.
+struct FillDesc {
+  FillShape shape = FillShape::Box;
+  Vec3 min{0, 0, 0};     ///< box: lower corner
+  Vec3 max{1, 1, 1};     ///< box: upper corner
+  Vec3 center{0, 0, 0};  ///< sphere: centre
+  double radius = 1;     ///< sphere: radius
+  std::string geometry;  ///< mesh: file relative to the scene (issue #3)
+  double spacing = 1;    ///< lattice step, > 0
+  int line = 0;          ///< source line (for messages); not compared
+  bool operator==(const FillDesc& o) const {
+    return shape == o.shape && min == o.min && max == o.max && center == o.center &&
+           radius == o.radius && geometry == o.geometry && spacing == o.spacing;
+  }
+};
+
+/// `<Fluid>`: one substance.
+struct FluidDesc {
+  std::string name;                  ///< unique, required
+  fluid::FluidParams params;         ///< the seed's per-fluid parameters
+  Vec3 initialSpeed{0, 0, 0};        ///< initial velocity of every particle
+  Vec3 colour{0.8, 0.5, 0.2};        ///< display colour in [0,1]
+  std::vector<Vec3> particles;       ///< explicit positions (NumberOfParticles of them)
+  std::vector<FillDesc> fills;       ///< lattice sources
+  int line = 0;                      ///< source line; not compared
+  bool operator==(const FluidDesc& o) const {
+    return name == o.name && params == o.params && initialSpeed == o.initialSpeed &&
+           colour == o.colour && particles == o.particles && fills == o.fills;
+  }
+};
+
+/// A function plus its velocity terms: one entry of the dictionary of interactions.
+struct InteractionDesc {
+  forces::PairFunction function = forces::Linear{};
+  double damping = 0;           ///< viscosity-like damping of relative velocity, mass/s
+  double relativeVelocity = 0;  ///< damping of the normal relative velocity, mass/s
+  bool operator==(const InteractionDesc&) const = default;
+};
+
+/// `<Pair>`: an override for fluids A and B (A == B replaces A's own function).
+struct PairDesc {
+  std::string a, b;
+  InteractionDesc interaction;
+  int line = 0;  ///< source line; not compared
+  bool operator==(const PairDesc& o) const {
+    return a == o.a && b == o.b && interaction == o.interaction;
+  }
+};
+
+/// `<Interactions>`: the global functions and pair overrides.
+struct InteractionsDesc {
+  /// Different fluids, unless a Pair overrides: seed default linear, [0,5], cutoff 1.
+  InteractionDesc fluidFluid{forces::Linear{5, 1, 0, 5}, 0, 0};
+  std::vector<PairDesc> pairs;
+  bool operator==(const InteractionsDesc&) const = default;
+};
+
+/// A whole scene.
+struct SceneDesc {
+  SimulationDesc simulation;
+  CameraDesc camera;
+  std::optional<EnvironmentDesc> environment;  ///< absent: no walls at all
+  std::vector<FluidDesc> fluids;
+  InteractionsDesc interactions;
+  bool operator==(const SceneDesc&) const = default;
+};
+
+}  // namespace softsub::scene
