@@ -1,0 +1,86 @@
+#include "forces/interaction_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace softsub::forces {
+
+double SampledFunction::at(double r) const {
+  if (r >= cutoff || pieces.empty()) return 0.0;
+  const double t = std::max(r, 0.0) * invDr;
+  const std::size_t k = std::min(static_cast<std::size_t>(t), intervals() - 1);
+  return pieces[2 * k] + pieces[2 * k + 1] * (t - static_cast<double>(k));
+}
+
+SampledFunction sample(const PairFunction& f, int intervals) {
+  SampledFunction s;
+  s.cutoff = cutoff(f);
+  const int n = std::max(intervals, 1);
+  s.invDr = s.cutoff > 0 ? n / s.cutoff : 0;
+  s.pieces.resize(2 * static_cast<std::size_t>(n));
+  if (s.cutoff <= 0) return s;
+  const double dr = s.cutoff / n;
+  auto value = [&](int k) {
+    // The last sample is the limit from below (F may jump to 0 at the cutoff).
+    const double r = k == n ? s.cutoff * (1 - 1e-12) : k * dr;
+    return evaluate(f, r);
+  };
+  double v0 = value(0);
+  for (int k = 0; k < n; ++k) {
+    const double v1 = value(k + 1);
+    s.pieces[2 * k] = static_cast<float>(v0);
+    s.pieces[2 * k + 1] = static_cast<float>(v1 - v0);
+    v0 = v1;
+  }
+  return s;
+}
+
+InteractionTable::InteractionTable(std::size_t materials, int intervals)
+    : materials_(materials),
+      intervals_(intervals),
+      entries_(materials * materials),
+      described_(materials * materials) {
+  // Every pair starts as "nothing": a zero function with zero cutoff.
+}
+
+std::uint32_t InteractionTable::addSamples(const PairFunction& f, double* cutoffOut) {
+  *cutoffOut = cutoff(f);
+  for (const auto& [fn, offset] : sampledFunctions_)
+    if (fn == f) return offset;
+  const SampledFunction s = sample(f, intervals_);
+  const auto offset = static_cast<std::uint32_t>(samples_.size());
+  samples_.insert(samples_.end(), s.pieces.begin(), s.pieces.end());
+  sampledFunctions_.emplace_back(f, offset);
+  return offset;
+}
+
+void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) {
+  double rc = 0;
+  PairEntry e;
+  e.offset = addSamples(in.function, &rc);
+  e.cutoff2 = static_cast<float>(rc * rc);
+  e.invDr = rc > 0 ? static_cast<float>(intervals_ / rc) : 0.0f;
+  e.damping = static_cast<float>(in.damping);
+  e.relativeVelocity = static_cast<float>(in.relativeVelocity);
+  e.lastPiece = static_cast<std::uint32_t>(intervals_ - 1);
+  entries_[a * materials_ + b] = e;
+  entries_[b * materials_ + a] = e;
+  described_[a * materials_ + b] = in;
+  described_[b * materials_ + a] = in;
+}
+
+double InteractionTable::maxCutoff() const {
+  double m = 0;
+  for (const PairEntry& e : entries_) m = std::max(m, std::sqrt(static_cast<double>(e.cutoff2)));
+  return m;
+}
+
+double InteractionTable::sampledAt(std::size_t a, std::size_t b, double r) const {
+  const PairEntry& e = entry(a, b);
+  if (r * r >= e.cutoff2 || e.invDr == 0) return 0.0;
+  const float t = static_cast<float>(r) * e.invDr;
+  const std::uint32_t k = std::min(static_cast<std::uint32_t>(t), e.lastPiece);
+  return samples_[e.offset + 2 * k] + samples_[e.offset + 2 * k + 1] * (t - static_cast<float>(k));
+}
+
+}  // namespace softsub::forces

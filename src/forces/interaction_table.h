@@ -1,0 +1,92 @@
+#pragma once
+/// Sampled pair functions and the material x material table of interactions (the
+/// seed's "dictionary of interactions"), owned by a Model: never a singleton.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "forces/function.h"
+
+namespace softsub::forces {
+
+/// Default number of linear pieces a function is sampled into (seed 3.4.2). Measured
+/// error bounds are in tests/forces; 2048 keeps the true LJ force within 1e-3 relative.
+inline constexpr int kDefaultIntervals = 2048;
+
+/// A function sampled on [0, cutoff] at `intervals` equal pieces and interpolated
+/// linearly. Stored as (value, slope-per-piece) pairs so one lookup reads one pair.
+struct SampledFunction {
+  double cutoff = 0;              ///< zero from here on
+  double invDr = 0;               ///< intervals / cutoff
+  std::vector<float> pieces;      ///< 2 * intervals: value at piece start, increment
+
+  /// The interpolated value at r (0 for r >= cutoff or r < 0 handled as r = 0).
+  [[nodiscard]] double at(double r) const;
+  /// Number of linear pieces.
+  [[nodiscard]] std::size_t intervals() const { return pieces.size() / 2; }
+};
+
+/// Samples f into `intervals` linear pieces. The sample at the cutoff takes the limit
+/// from below, so a function with a jump at its cutoff keeps its value up to it.
+SampledFunction sample(const PairFunction& f, int intervals = kDefaultIntervals);
+
+/// One table entry: what the pair kernel needs for a (material a, material b) pair.
+/// Hot, small and plain; precomputed constants only.
+struct PairEntry {
+  float cutoff2 = 0;           ///< squared cutoff; pairs at or beyond it do nothing
+  float invDr = 0;             ///< pieces per unit distance
+  float damping = 0;           ///< viscosity: force += damping * (v_j - v_i)
+  float relativeVelocity = 0;  ///< force += k * ((v_j - v_i) . n) n
+  std::uint32_t offset = 0;    ///< start of this function's pieces in samples()
+  std::uint32_t lastPiece = 0; ///< intervals - 1 (clamps float rounding at the cutoff)
+};
+
+/// What a pair of materials does to each other, before sampling.
+struct Interaction {
+  PairFunction function = Linear{0, 1, 0, 0};
+  double damping = 0;
+  double relativeVelocity = 0;
+  bool operator==(const Interaction&) const = default;
+};
+
+/// The material x material interaction table. Symmetric: set(a, b) also sets (b, a).
+/// Identical functions share one sampled buffer.
+class InteractionTable {
+ public:
+  /// A table for `materials` materials, every pair doing nothing.
+  explicit InteractionTable(std::size_t materials = 0, int intervals = kDefaultIntervals);
+
+  /// Sets the interaction of materials a and b (and b and a).
+  void set(std::size_t a, std::size_t b, const Interaction& interaction);
+
+  /// Number of materials (rows).
+  [[nodiscard]] std::size_t materials() const { return materials_; }
+  /// The entry for (a, b).
+  [[nodiscard]] const PairEntry& entry(std::size_t a, std::size_t b) const {
+    return entries_[a * materials_ + b];
+  }
+  /// The un-sampled description for (a, b).
+  [[nodiscard]] const Interaction& interaction(std::size_t a, std::size_t b) const {
+    return described_[a * materials_ + b];
+  }
+  /// All entries, row-major (a * materials() + b).
+  [[nodiscard]] std::span<const PairEntry> entries() const { return entries_; }
+  /// All sampled pieces; entries point into this.
+  [[nodiscard]] std::span<const float> samples() const { return samples_; }
+  /// The longest cutoff of any pair: the neighbour grid's cell size.
+  [[nodiscard]] double maxCutoff() const;
+  /// The sampled function of (a, b) evaluated at r, as the kernel does.
+  [[nodiscard]] double sampledAt(std::size_t a, std::size_t b, double r) const;
+
+ private:
+  std::uint32_t addSamples(const PairFunction& f, double* cutoffOut);
+
+  std::size_t materials_ = 0;
+  int intervals_ = kDefaultIntervals;
+  std::vector<PairEntry> entries_;
+  std::vector<Interaction> described_;
+  std::vector<float> samples_;
+  std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
+};
+
+}  // namespace softsub::forces

@@ -1,0 +1,205 @@
+#include "neighbors/cell_grid.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace softsub::neighbors {
+
+namespace {
+
+constexpr int kBits = 21;
+constexpr std::uint64_t kMask = (std::uint64_t{1} << kBits) - 1;
+constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+// floor(x / h) as an integer, safe for any float (NaN and huge values included):
+// values are clamped far beyond any useful range before the conversion.
+inline std::uint64_t wrappedCoord(float x, float invH) {
+  double c = std::floor(static_cast<double>(x) * static_cast<double>(invH));
+  if (!(c > -1e15)) c = -1e15;  // also catches NaN
+  if (c > 1e15) c = 1e15;
+  return static_cast<std::uint64_t>(static_cast<std::int64_t>(c)) & kMask;
+}
+
+inline std::uint64_t pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+  return (z << (2 * kBits)) | (y << kBits) | x;
+}
+
+inline std::uint64_t hashKey(std::uint64_t k) {
+  k ^= k >> 31;
+  k *= 0x9E3779B97F4A7C15ull;
+  k ^= k >> 29;
+  return k;
+}
+
+// The 13 forward offsets (dz, dy, dx) of a half shell, in increasing key order for
+// non-wrapping cells, so contiguous neighbours merge into one slot range.
+constexpr std::array<std::array<int, 3>, 13> kForward = {{
+    {0, 0, 1},
+    {0, 1, -1}, {0, 1, 0}, {0, 1, 1},
+    {1, -1, -1}, {1, -1, 0}, {1, -1, 1},
+    {1, 0, -1}, {1, 0, 0}, {1, 0, 1},
+    {1, 1, -1}, {1, 1, 0}, {1, 1, 1},
+}};
+
+}  // namespace
+
+void CellGrid::rebuild(ParticleStore& store, float cellSize) {
+  cellSize_ = cellSize;
+  const std::size_t n = store.size();
+  const float invH = 1.0f / cellSize;
+  keys_.resize(n);
+  bool sorted = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    keys_[i] = pack(wrappedCoord(store.px[i], invH), wrappedCoord(store.py[i], invH),
+                    wrappedCoord(store.pz[i], invH));
+    if (i > 0 && keys_[i] < keys_[i - 1]) sorted = false;
+  }
+  reordered_ = !sorted;
+  if (!sorted) {
+    sortKeys();
+    store.permute(order_);
+  }
+  buildCells();
+  buildHash();
+
+  // Forward neighbour ranges of every cell.
+  const std::size_t cells = cellCount();
+  rangeStart_.resize(cells + 1);
+  ranges_.clear();
+  std::array<std::uint32_t, 13> found{};
+  for (std::size_t c = 0; c < cells; ++c) {
+    rangeStart_[c] = static_cast<std::uint32_t>(ranges_.size());
+    const std::uint64_t k = cellKey_[c];
+    const std::uint64_t x = k & kMask, y = (k >> kBits) & kMask, z = k >> (2 * kBits);
+    std::size_t nf = 0;
+    for (const auto& o : kForward) {
+      const std::uint64_t nk = pack((x + static_cast<std::uint64_t>(o[2])) & kMask,
+                                    (y + static_cast<std::uint64_t>(o[1])) & kMask,
+                                    (z + static_cast<std::uint64_t>(o[0])) & kMask);
+      const std::int64_t cell = findCell(nk);
+      // A wrapped offset can land on the cell itself only in a degenerate 1-cell torus,
+      // which 21 bits rule out; the check keeps the invariant explicit.
+      if (cell >= 0 && static_cast<std::size_t>(cell) != c)
+        found[nf++] = static_cast<std::uint32_t>(cell);
+    }
+    // At most 13 entries: an insertion sort (cell indices are distinct: keys differ).
+    for (std::size_t a = 1; a < nf; ++a)
+      for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const SlotRange r{cellStart_[found[f]], cellStart_[found[f] + 1]};
+      if (!ranges_.empty() && ranges_.size() > rangeStart_[c] && ranges_.back().end == r.begin)
+        ranges_.back().end = r.end;
+      else
+        ranges_.push_back(r);
+    }
+  }
+  rangeStart_[cells] = static_cast<std::uint32_t>(ranges_.size());
+}
+
+// Stable sort of the particle slots by key. Nearly sorted input (the usual case from
+// one substep to the next) takes an insertion sort; otherwise an LSD radix sort that
+// skips the bytes all keys share.
+void CellGrid::sortKeys() {
+  const std::size_t n = keys_.size();
+  order_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
+
+  std::size_t descents = 0;
+  for (std::size_t i = 1; i < n; ++i) descents += keys_[i] < keys_[i - 1];
+  if (descents * 32 < n) {
+    for (std::size_t i = 1; i < n; ++i) {
+      const std::uint64_t k = keys_[i];
+      const std::uint32_t o = order_[i];
+      std::size_t j = i;
+      while (j > 0 && keys_[j - 1] > k) {
+        keys_[j] = keys_[j - 1];
+        order_[j] = order_[j - 1];
+        --j;
+      }
+      keys_[j] = k;
+      order_[j] = o;
+    }
+    return;
+  }
+
+  keysTmp_.resize(n);
+  orderTmp_.resize(n);
+  std::uint64_t allOr = 0, allAnd = ~std::uint64_t{0};
+  for (std::uint64_t k : keys_) { allOr |= k; allAnd &= k; }
+  const std::uint64_t varying = allOr ^ allAnd;
+  std::array<std::uint32_t, 256> count{};
+  for (int shift = 0; shift < 64; shift += 8) {
+    if (((varying >> shift) & 0xFF) == 0) continue;
+    count.fill(0);
+    for (std::uint64_t k : keys_) ++count[(k >> shift) & 0xFF];
+    std::uint32_t sum = 0;
+    for (auto& c : count) { const std::uint32_t t = c; c = sum; sum += t; }
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t dst = count[(keys_[i] >> shift) & 0xFF]++;
+      keysTmp_[dst] = keys_[i];
+      orderTmp_[dst] = order_[i];
+    }
+    keys_.swap(keysTmp_);
+    order_.swap(orderTmp_);
+  }
+}
+
+void CellGrid::buildCells() {
+  const std::size_t n = keys_.size();
+  cellStart_.clear();
+  cellKey_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == 0 || keys_[i] != keys_[i - 1]) {
+      cellStart_.push_back(static_cast<std::uint32_t>(i));
+      cellKey_.push_back(keys_[i]);
+    }
+  }
+  cellStart_.push_back(static_cast<std::uint32_t>(n));
+}
+
+void CellGrid::buildHash() {
+  const std::size_t cells = cellKey_.size();
+  std::size_t cap = 16;
+  while (cap < 2 * cells) cap *= 2;
+  hashKeys_.assign(cap, kEmpty);
+  hashCells_.resize(cap);
+  hashMask_ = cap - 1;
+  for (std::size_t c = 0; c < cells; ++c) {
+    std::uint64_t h = hashKey(cellKey_[c]) & hashMask_;
+    while (hashKeys_[h] != kEmpty) h = (h + 1) & hashMask_;
+    hashKeys_[h] = cellKey_[c];
+    hashCells_[h] = static_cast<std::uint32_t>(c);
+  }
+}
+
+std::int64_t CellGrid::findCell(std::uint64_t key) const {
+  std::uint64_t h = hashKey(key) & hashMask_;
+  while (true) {
+    const std::uint64_t k = hashKeys_[h];
+    if (k == key) return hashCells_[h];
+    if (k == kEmpty) return -1;
+    h = (h + 1) & hashMask_;
+  }
+}
+
+std::size_t CellGrid::memoryBytes() const {
+  return keys_.capacity() * 8 + keysTmp_.capacity() * 8 + order_.capacity() * 4 +
+         orderTmp_.capacity() * 4 + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
+         rangeStart_.capacity() * 4 + ranges_.capacity() * sizeof(SlotRange) +
+         hashKeys_.capacity() * 8 + hashCells_.capacity() * 4;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> bruteForcePairs(const ParticleStore& s,
+                                                                     float cutoff) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  const float c2 = cutoff * cutoff;
+  for (std::uint32_t i = 0; i < s.size(); ++i)
+    for (std::uint32_t j = i + 1; j < s.size(); ++j) {
+      const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+      if (dx * dx + dy * dy + dz * dz < c2) out.emplace_back(i, j);
+    }
+  return out;
+}
+
+}  // namespace softsub::neighbors

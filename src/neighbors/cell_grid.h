@@ -1,0 +1,92 @@
+#pragma once
+/// The neighbour grid: particles sorted by cell, cells found through a hash of their
+/// coordinates. Memory is O(particles) whatever the spatial extent.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/particle_store.h"
+
+namespace softsub::neighbors {
+
+/// A half-open range [begin, end) of particle slots.
+struct SlotRange {
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+};
+
+/// Uniform cell list with cells as large as the longest interaction distance.
+///
+/// Why this layout: cell coordinates are wrapped to 21 bits per axis and packed into
+/// one 64-bit key (z, y, x). Sorting particles by key puts each cell's particles next
+/// to each other and keeps rows of cells contiguous, so the three cells (x-1..x+1) of a
+/// neighbouring row usually form a single slot range. Wrapping can only make far-apart
+/// cells share a key (then the distance test rejects their pairs); it never separates
+/// true neighbours, and no array is ever sized by the spatial extent.
+///
+/// Each unordered pair of neighbouring cells is listed once (a half shell of 13
+/// forward neighbours), so every particle pair within the cell size is visited exactly
+/// once: the basis for applying Newton's third law.
+class CellGrid {
+ public:
+  /// Sorts `store` by cell of size `cellSize` (> 0) and rebuilds the cell lists.
+  /// Permutes the store only when the order changed. No allocation once warmed up.
+  void rebuild(ParticleStore& store, float cellSize);
+
+  /// Number of occupied cells.
+  [[nodiscard]] std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
+  /// Slots of the particles in cell c.
+  [[nodiscard]] SlotRange cell(std::size_t c) const {
+    return {cellStart_[c], cellStart_[c + 1]};
+  }
+  /// Slot ranges of cell c's forward neighbour cells (merged where contiguous). Pairs
+  /// (i in cell c, j in these ranges) plus pairs i < j inside cell c are every
+  /// candidate pair exactly once.
+  [[nodiscard]] std::span<const SlotRange> forwardRanges(std::size_t c) const {
+    return {ranges_.data() + rangeStart_[c], ranges_.data() + rangeStart_[c + 1]};
+  }
+  /// The cell size used by the last rebuild.
+  [[nodiscard]] float cellSize() const { return cellSize_; }
+  /// Whether the last rebuild had to reorder the store.
+  [[nodiscard]] bool reordered() const { return reordered_; }
+
+  /// Calls fn(i, j) for every candidate pair (i != j, each unordered pair once).
+  template <class Fn>
+  void forEachCandidatePair(Fn&& fn) const {
+    for (std::size_t c = 0; c < cellCount(); ++c) {
+      const SlotRange own = cell(c);
+      for (std::uint32_t i = own.begin; i < own.end; ++i) {
+        for (std::uint32_t j = i + 1; j < own.end; ++j) fn(i, j);
+        for (const SlotRange& r : forwardRanges(c))
+          for (std::uint32_t j = r.begin; j < r.end; ++j) fn(i, j);
+      }
+    }
+  }
+
+  /// Bytes currently reserved by the grid's buffers.
+  [[nodiscard]] std::size_t memoryBytes() const;
+
+ private:
+  void sortKeys();
+  void buildCells();
+  void buildHash();
+  [[nodiscard]] std::int64_t findCell(std::uint64_t key) const;
+
+  float cellSize_ = 0;
+  bool reordered_ = false;
+  std::vector<std::uint64_t> keys_, keysTmp_;
+  std::vector<std::uint32_t> order_, orderTmp_;
+  std::vector<std::uint32_t> cellStart_;   // cellCount()+1 slot offsets
+  std::vector<std::uint64_t> cellKey_;     // key of each cell
+  std::vector<std::uint32_t> rangeStart_;  // cellCount()+1 offsets into ranges_
+  std::vector<SlotRange> ranges_;
+  std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two
+  std::vector<std::uint32_t> hashCells_;
+  std::uint64_t hashMask_ = 0;
+};
+
+/// Brute-force reference: every pair (i < j) closer than `cutoff`, O(n^2). Tests only.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> bruteForcePairs(const ParticleStore& store,
+                                                                     float cutoff);
+
+}  // namespace softsub::neighbors

@@ -1,0 +1,92 @@
+#include "scene/compile.h"
+
+#include "scene/fill.h"
+
+namespace softsub::scene {
+
+solver::Integrator toSolver(Integrator i) {
+  switch (i) {
+    case Integrator::ExplicitEuler: return solver::Integrator::ExplicitEuler;
+    case Integrator::SymplecticEuler: return solver::Integrator::SymplecticEuler;
+    case Integrator::VelocityVerlet: return solver::Integrator::VelocityVerlet;
+  }
+  return solver::Integrator::SymplecticEuler;
+}
+
+namespace {
+
+forces::Interaction toInteraction(const InteractionDesc& d) {
+  return {d.function, d.damping, d.relativeVelocity};
+}
+
+const PairDesc* findPair(const InteractionsDesc& in, const std::string& a, const std::string& b) {
+  for (const PairDesc& p : in.pairs)
+    if ((p.a == a && p.b == b) || (p.a == b && p.b == a)) return &p;
+  return nullptr;
+}
+
+}  // namespace
+
+Compiled compile(const SceneDesc& desc) {
+  Compiled out;
+  solver::Model& m = out.model;
+  m.framesPerSecond = desc.simulation.framesPerSecond;
+  m.substeps = desc.simulation.substeps;
+  m.frames = desc.simulation.frames;
+  m.gravity = desc.simulation.gravity;
+  m.integrator = toSolver(desc.simulation.integrator);
+  if (desc.environment) {
+    const EnvironmentDesc& e = *desc.environment;
+    solver::Container c;
+    c.lo = {-e.width / 2, 0, -e.depth / 2};
+    c.hi = {e.width / 2, e.height, e.depth / 2};
+    c.closed = e.closed;
+    c.restitution = e.normalAttenuation;
+    c.friction = e.tangentAttenuation;
+    m.container = c;
+  }
+
+  const std::size_t nf = desc.fluids.size();
+  m.table = forces::InteractionTable(nf);
+  for (std::size_t a = 0; a < nf; ++a) {
+    const FluidDesc& fa = desc.fluids[a];
+    for (std::size_t b = a; b < nf; ++b) {
+      const FluidDesc& fb = desc.fluids[b];
+      if (const PairDesc* p = findPair(desc.interactions, fa.name, fb.name))
+        m.table.set(a, b, toInteraction(p->interaction));
+      else if (a == b)
+        m.table.set(a, a, {fluid::ownFunction(fa.params), fa.params.viscosity, 0});
+      else
+        m.table.set(a, b, toInteraction(desc.interactions.fluidFluid));
+    }
+  }
+
+  ParticleStore& store = out.state.particles;
+  std::vector<Vec3> points;
+  std::uint32_t nextId = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const FluidDesc& fd = desc.fluids[f];
+    points.assign(fd.particles.begin(), fd.particles.end());
+    for (const FillDesc& fill : fd.fills) generateFill(fill, points);
+    solver::FluidInfo info;
+    info.name = fd.name;
+    info.colour = {static_cast<float>(fd.colour.x()), static_cast<float>(fd.colour.y()),
+                   static_cast<float>(fd.colour.z())};
+    info.particleSize = fd.params.particleSize;
+    info.particleMass = fd.params.particleMass;
+    info.firstId = nextId;
+    info.count = static_cast<std::uint32_t>(points.size());
+    m.fluids.push_back(info);
+    m.materials.push_back({static_cast<float>(1.0 / fd.params.particleMass),
+                           static_cast<float>(fd.params.particleSize / 2)});
+    store.reserve(store.size() + points.size());
+    const auto v = fd.initialSpeed.cast<float>();
+    for (const Vec3& p : points)
+      store.add(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()), v.x(),
+                v.y(), v.z(), static_cast<std::uint16_t>(f), static_cast<std::uint32_t>(f));
+    nextId += info.count;
+  }
+  return out;
+}
+
+}  // namespace softsub::scene

@@ -1,0 +1,69 @@
+#pragma once
+/// Model (read-only, compiled from a scene) and State (mutable). Every solver function
+/// takes both explicitly; there is no global or "current" simulation.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "core/particle_store.h"
+#include "forces/interaction_table.h"
+
+namespace softsub::solver {
+
+/// Time integration scheme (docs/architecture.md has the exact update of each).
+enum class Integrator : std::uint8_t { ExplicitEuler, SymplecticEuler, VelocityVerlet };
+
+/// The container: walls at lo/hi on x and z, a floor at lo.y, a lid at hi.y if closed.
+struct Container {
+  std::array<double, 3> lo{0, 0, 0};
+  std::array<double, 3> hi{0, 0, 0};
+  bool closed = false;      ///< lid at hi.y
+  double restitution = 0.5; ///< normal velocity after contact = -restitution * before
+  double friction = 0.1;    ///< tangential velocity after contact *= (1 - friction)
+};
+
+/// A fluid as the solver and the outputs see it.
+struct FluidInfo {
+  std::string name;
+  std::array<float, 3> colour{1, 1, 1};
+  double particleSize = 1;     ///< diameter
+  double particleMass = 1;
+  std::uint32_t firstId = 0;   ///< its particles have ids firstId .. firstId + count - 1
+  std::uint32_t count = 0;
+};
+
+/// Per material (row of the interaction table): what the integrator needs.
+struct MaterialInfo {
+  float inverseMass = 1;
+  float radius = 0.5f;  ///< distance kept from the container walls
+};
+
+/// Everything that does not change during a run.
+struct Model {
+  double framesPerSecond = 24;
+  int substeps = 8;
+  std::int64_t frames = 120;
+  Vec3 gravity{0, -9.81, 0};
+  Integrator integrator = Integrator::SymplecticEuler;
+  std::optional<Container> container;
+  std::vector<FluidInfo> fluids;        ///< entity index = fluid index
+  std::vector<MaterialInfo> materials;  ///< material index = fluid index for now
+  forces::InteractionTable table;
+
+  /// Seconds per substep.
+  [[nodiscard]] double dt() const { return 1.0 / (framesPerSecond * substeps); }
+  /// Total particles over all fluids.
+  [[nodiscard]] std::size_t particleCount() const;
+};
+
+/// Everything that changes during a run.
+struct State {
+  ParticleStore particles;
+  std::int64_t frame = 0;     ///< frames completed; the state is at time frame / fps
+  bool forcesValid = false;   ///< store.f holds the forces of the current positions
+};
+
+}  // namespace softsub::solver

@@ -1,0 +1,207 @@
+#include "solver/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "fluid/pair_forces.h"
+
+namespace softsub::solver {
+
+std::size_t Model::particleCount() const {
+  std::size_t n = 0;
+  for (const FluidInfo& f : fluids) n += f.count;
+  return n;
+}
+
+Simulation::Simulation(const Model& model, State state) : model_(model), state_(std::move(state)) {
+  const double c = model_.table.maxCutoff();
+  cellSize_ = static_cast<float>(c > 0 ? c : 1.0);
+}
+
+double Simulation::time() const {
+  return static_cast<double>(state_.frame) / model_.framesPerSecond;
+}
+
+void Simulation::computeForces() {
+  ParticleStore& s = state_.particles;
+  if (s.size() > 0) grid_.rebuild(s, cellSize_);
+  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
+  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
+  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  fluid::accumulatePairForces(grid_, model_.table, s);
+  state_.forcesValid = true;
+}
+
+// Explicit Euler (the seed's): x += v dt, v += a(x, v) dt, both from the old state.
+// Symplectic Euler: v += a dt first, then x += v_new dt.
+void Simulation::integrateEuler(bool symplectic) {
+  ParticleStore& s = state_.particles;
+  const float dt = static_cast<float>(model_.dt());
+  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
+              gz = static_cast<float>(model_.gravity.z());
+  const MaterialInfo* mats = model_.materials.data();
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float im = mats[s.material[i]].inverseMass;
+    const float ax = s.fx[i] * im + gx, ay = s.fy[i] * im + gy, az = s.fz[i] * im + gz;
+    if (symplectic) {
+      s.vx[i] += ax * dt; s.vy[i] += ay * dt; s.vz[i] += az * dt;
+      s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
+    } else {
+      s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
+      s.vx[i] += ax * dt; s.vy[i] += ay * dt; s.vz[i] += az * dt;
+    }
+  }
+}
+
+// Velocity Verlet: v += a_n dt/2; x += v dt; (walls; forces at x_{n+1} with the
+// half-step velocity); v += a_{n+1} dt/2.
+void Simulation::integrateVerletFirstHalf() {
+  ParticleStore& s = state_.particles;
+  const float dt = static_cast<float>(model_.dt());
+  const float h = 0.5f * dt;
+  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
+              gz = static_cast<float>(model_.gravity.z());
+  const MaterialInfo* mats = model_.materials.data();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const float im = mats[s.material[i]].inverseMass;
+    s.vx[i] += (s.fx[i] * im + gx) * h; s.vy[i] += (s.fy[i] * im + gy) * h; s.vz[i] += (s.fz[i] * im + gz) * h;
+    s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
+  }
+}
+
+void Simulation::integrateVerletSecondHalf() {
+  ParticleStore& s = state_.particles;
+  const float h = 0.5f * static_cast<float>(model_.dt());
+  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
+              gz = static_cast<float>(model_.gravity.z());
+  const MaterialInfo* mats = model_.materials.data();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const float im = mats[s.material[i]].inverseMass;
+    s.vx[i] += (s.fx[i] * im + gx) * h; s.vy[i] += (s.fy[i] * im + gy) * h; s.vz[i] += (s.fz[i] * im + gz) * h;
+  }
+}
+
+// Container walls: a particle's centre stays one radius inside. On contact the
+// position is put back on the wall; if the particle moves into the wall its normal
+// velocity is reversed and scaled by the restitution and its tangential velocity is
+// scaled by (1 - friction). No walls at all without an <Environment>.
+void Simulation::applyWalls() {
+  if (!model_.container) return;
+  const Container& box = *model_.container;
+  ParticleStore& s = state_.particles;
+  const float e = static_cast<float>(box.restitution);
+  const float keep = static_cast<float>(1.0 - box.friction);
+  float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
+  float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
+  const MaterialInfo* mats = model_.materials.data();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const float r = mats[s.material[i]].radius;
+    for (int a = 0; a < 3; ++a) {
+      float lo = static_cast<float>(box.lo[a]) + r;
+      float hi = static_cast<float>(box.hi[a]) - r;
+      if (lo > hi) lo = hi = 0.5f * static_cast<float>(box.lo[a] + box.hi[a]);
+      const bool lid = a != 1 || box.closed;
+      float& p = pos[a][i];
+      float& v = vel[a][i];
+      int side = 0;
+      if (p < lo) { p = lo; side = -1; }
+      else if (lid && p > hi) { p = hi; side = 1; }
+      if (side != 0 && v * static_cast<float>(side) > 0) {
+        v = -e * v;
+        vel[(a + 1) % 3][i] *= keep;
+        vel[(a + 2) % 3][i] *= keep;
+      }
+    }
+  }
+}
+
+void Simulation::step() {
+  switch (model_.integrator) {
+    case Integrator::ExplicitEuler:
+    case Integrator::SymplecticEuler:
+      computeForces();
+      integrateEuler(model_.integrator == Integrator::SymplecticEuler);
+      applyWalls();
+      state_.forcesValid = false;
+      break;
+    case Integrator::VelocityVerlet:
+      if (!state_.forcesValid) computeForces();
+      integrateVerletFirstHalf();
+      applyWalls();
+      computeForces();
+      integrateVerletSecondHalf();
+      break;
+  }
+}
+
+void Simulation::advanceFrame() {
+  for (int k = 0; k < model_.substeps; ++k) step();
+  ++state_.frame;
+  checkFinite();
+}
+
+void Simulation::checkFinite() const {
+  const ParticleStore& s = state_.particles;
+  const std::vector<float>* arrays[6] = {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz};
+  static const char* names[6] = {"position x", "position y", "position z",
+                                 "velocity x", "velocity y", "velocity z"};
+  for (int a = 0; a < 6; ++a) {
+    const std::vector<float>& v = *arrays[a];
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (std::isfinite(v[i])) continue;
+      const FluidInfo& f = model_.fluids.at(s.owner[i]);
+      std::ostringstream msg;
+      msg << "simulation blew up at frame " << state_.frame << ": fluid '" << f.name
+          << "', particle id " << s.id[i] << ": " << names[a] << " is " << v[i]
+          << " (forces too stiff for the time step: raise Substeps, lower MaximumForce or Viscosity)";
+      throw BlowUpError(msg.str());
+    }
+  }
+}
+
+void Simulation::snapshot(FrameSnapshot& out) const {
+  const ParticleStore& s = state_.particles;
+  s.slotsById(slotOfId_);
+  out.frame = state_.frame;
+  out.time = time();
+  out.framesPerSecond = model_.framesPerSecond;
+  out.fluids.resize(model_.fluids.size());
+  for (std::size_t f = 0; f < model_.fluids.size(); ++f) {
+    const FluidInfo& info = model_.fluids[f];
+    FluidSnapshot& fs = out.fluids[f];
+    fs.name = info.name;
+    fs.colour = info.colour;
+    fs.particleSize = static_cast<float>(info.particleSize);
+    fs.ids.resize(info.count);
+    fs.positions.resize(3 * std::size_t{info.count});
+    fs.velocities.resize(3 * std::size_t{info.count});
+    for (std::uint32_t k = 0; k < info.count; ++k) {
+      const std::uint32_t id = info.firstId + k;
+      const std::uint32_t slot = slotOfId_[id];
+      fs.ids[k] = id;
+      fs.positions[3 * k] = s.px[slot]; fs.positions[3 * k + 1] = s.py[slot]; fs.positions[3 * k + 2] = s.pz[slot];
+      fs.velocities[3 * k] = s.vx[slot]; fs.velocities[3 * k + 1] = s.vy[slot]; fs.velocities[3 * k + 2] = s.vz[slot];
+    }
+  }
+}
+
+FrameSnapshot Simulation::snapshot() const {
+  FrameSnapshot f;
+  snapshot(f);
+  return f;
+}
+
+std::size_t Simulation::memoryBytes() const {
+  const ParticleStore& s = state_.particles;
+  std::size_t b = 0;
+  for (auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) b += a->capacity() * 4;
+  b += s.material.capacity() * 2 + s.owner.capacity() * 4 + s.id.capacity() * 4;
+  // The store's permute scratch is one array of each type.
+  b += s.size() * (4 + 4 + 2);
+  return b + grid_.memoryBytes() + slotOfId_.capacity() * 4;
+}
+
+}  // namespace softsub::solver

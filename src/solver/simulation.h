@@ -1,0 +1,55 @@
+#pragma once
+/// The stepper: the seed's stages, in order, on (Model, State).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/snapshot.h"
+#include "neighbors/cell_grid.h"
+#include "solver/model.h"
+
+namespace softsub::solver {
+
+/// Owns a State and the work buffers for stepping it under a Model. The Model must
+/// outlive the Simulation.
+class Simulation {
+ public:
+  Simulation(const Model& model, State state);
+
+  /// One substep of length model.dt() (docs/architecture.md, "The step").
+  void step();
+  /// model.substeps substeps, then frame += 1. Throws BlowUpError (with frame, fluid,
+  /// particle id, quantity and value) if any position or velocity is not finite.
+  void advanceFrame();
+
+  /// The current frame as plain arrays in stable-id order (buffers reused).
+  void snapshot(FrameSnapshot& out) const;
+  /// Convenience: a fresh snapshot.
+  [[nodiscard]] FrameSnapshot snapshot() const;
+
+  /// Read access for tests, benchmarks and the viewer.
+  [[nodiscard]] const State& state() const { return state_; }
+  [[nodiscard]] const Model& model() const { return model_; }
+  /// Seconds since the start.
+  [[nodiscard]] double time() const;
+  /// Bytes held by the particle store and the work buffers.
+  [[nodiscard]] std::size_t memoryBytes() const;
+
+  /// Throws BlowUpError naming the first non-finite position/velocity, if any.
+  void checkFinite() const;
+
+ private:
+  void computeForces();            // stages 2-3: grid, pair forces (+ none external)
+  void integrateEuler(bool symplectic);
+  void integrateVerletFirstHalf();
+  void integrateVerletSecondHalf();
+  void applyWalls();
+
+  const Model& model_;
+  State state_;
+  neighbors::CellGrid grid_;
+  float cellSize_ = 1;
+  mutable std::vector<std::uint32_t> slotOfId_;
+};
+
+}  // namespace softsub::solver
