@@ -1,15 +1,19 @@
 #include "core/error.h"
 
+#include <string_view>
+
 namespace softsub {
 
 std::string formatInputError(const InputLocation& where, const std::string& problem,
                              const std::string& allowed) {
-  std::string s = where.file.empty() ? std::string("<input>") : where.file;
-  if (where.line > 0) s += ":" + std::to_string(where.line);
-  s += ": ";
-  if (!where.element.empty()) s += where.element + ": ";
-  s += problem;
-  if (!allowed.empty()) s += " (allowed: " + allowed + ")";
+  std::string s;
+  s.reserve(where.file.size() + where.element.size() + problem.size() + allowed.size() + 32);
+  s.append(where.file.empty() ? std::string_view("<input>") : std::string_view(where.file));
+  if (where.line > 0) s.append(":").append(std::to_string(where.line));
+  s.append(": ");
+  if (!where.element.empty()) s.append(where.element).append(": ");
+  s.append(problem);
+  if (!allowed.empty()) s.append(" (allowed: ").append(allowed).append(")");
   return s;
 }
 

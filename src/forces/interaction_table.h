@@ -53,8 +53,10 @@ struct Interaction {
 /// Identical functions share one sampled buffer.
 class InteractionTable {
  public:
+  /// An empty table (no materials).
+  InteractionTable() = default;
   /// A table for `materials` materials, every pair doing nothing.
-  explicit InteractionTable(std::size_t materials = 0, int intervals = kDefaultIntervals);
+  explicit InteractionTable(std::size_t materials, int intervals = kDefaultIntervals);
 
   /// Sets the interaction of materials a and b (and b and a).
   void set(std::size_t a, std::size_t b, const Interaction& interaction);

@@ -1,0 +1,117 @@
+// The pair kernel against a double-precision brute-force sum from the formulas.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fluid/fluid_params.h"
+#include "fluid/pair_forces.h"
+#include "support/clouds.h"
+
+namespace softsub::fluid {
+namespace {
+
+forces::InteractionTable threeMaterials() {
+  forces::InteractionTable t(3);
+  FluidParams honey;
+  honey.viscosity = 2;
+  FluidParams water;
+  water.amplitude = 5;
+  water.interactionDistance = 1.2;
+  water.viscosity = 0.1;
+  t.set(0, 0, {ownFunction(honey), honey.viscosity, 0});
+  t.set(1, 1, {ownFunction(water), water.viscosity, 0});
+  t.set(2, 2, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  t.set(0, 1, {forces::Linear{5, 1, 0, 5}, 0.3, 1.5});
+  t.set(0, 2, {forces::Curve{{0.1, 6, 0.7, 1, 1.3, -0.5}}, 0, 0.7});
+  t.set(1, 2, {forces::Linear{8, 1.5, 0, 8}, 0, 0});
+  return t;
+}
+
+TEST(PairForces, MatchesBruteForceReference) {
+  const auto table = threeMaterials();
+  ParticleStore s = scenarios::randomCloud(1200, -4, 4, 2.0f, 3, 11);
+  neighbors::CellGrid grid;
+  grid.rebuild(s, static_cast<float>(table.maxCutoff()));
+  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
+  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
+  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  accumulatePairForces(grid, table, s);
+  std::vector<double> rx, ry, rz;
+  referencePairForces(table, s, rx, ry, rz);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double e = std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]);
+    worst = std::max(worst, e);
+    scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
+  }
+  ASSERT_GT(scale, 1.0) << "the cloud must be dense enough to interact";
+  EXPECT_LT(worst, 2e-3 * scale);
+}
+
+TEST(PairForces, NewtonsThirdLawSumsToZero) {
+  const auto table = threeMaterials();
+  ParticleStore s = scenarios::randomCloud(3000, -5, 5, 3.0f, 3, 5);
+  neighbors::CellGrid grid;
+  grid.rebuild(s, static_cast<float>(table.maxCutoff()));
+  accumulatePairForces(grid, table, s);
+  double sx = 0, sy = 0, sz = 0, mag = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    sx += s.fx[i]; sy += s.fy[i]; sz += s.fz[i];
+    mag += std::abs(s.fx[i]) + std::abs(s.fy[i]) + std::abs(s.fz[i]);
+  }
+  EXPECT_LT(std::abs(sx) + std::abs(sy) + std::abs(sz), 1e-5 * mag);
+}
+
+TEST(PairForces, TwoParticlesFeelTheFunctionAlongTheirLine) {
+  forces::InteractionTable t(1);
+  t.set(0, 0, {forces::Linear{4, 2, 0, 4}, 0, 0});
+  ParticleStore s;
+  s.add(0, 0, 0, 0, 0, 0, 0, 0);
+  s.add(0.6f, 0.8f, 0, 0, 0, 0, 0, 0);  // r = 1: F = 2, repulsive
+  neighbors::CellGrid g;
+  g.rebuild(s, 2.0f);
+  accumulatePairForces(g, t, s);
+  std::vector<std::uint32_t> slot;
+  s.slotsById(slot);
+  EXPECT_NEAR(s.fx[slot[0]], -1.2, 1e-5);
+  EXPECT_NEAR(s.fy[slot[0]], -1.6, 1e-5);
+  EXPECT_NEAR(s.fx[slot[1]], 1.2, 1e-5);
+  EXPECT_NEAR(s.fy[slot[1]], 1.6, 1e-5);
+}
+
+TEST(PairForces, ViscosityAndRelativeVelocityTerms) {
+  forces::InteractionTable t(1);
+  t.set(0, 0, {forces::Linear{0, 2, 0, 0}, 0.5, 2.0});  // no distance force
+  ParticleStore s;
+  s.add(0, 0, 0, 0, 0, 0, 0, 0);
+  s.add(1, 0, 0, -1, 3, 0, 0, 0);  // approaching along x, sliding along y
+  neighbors::CellGrid g;
+  g.rebuild(s, 2.0f);
+  accumulatePairForces(g, t, s);
+  std::vector<std::uint32_t> slot;
+  s.slotsById(slot);
+  // dv = (-1, 3, 0), n = (1, 0, 0): f0 = 0.5 dv + 2 (dv.n) n = (-0.5 - 2, 1.5, 0)
+  EXPECT_NEAR(s.fx[slot[0]], -2.5, 1e-6);
+  EXPECT_NEAR(s.fy[slot[0]], 1.5, 1e-6);
+  EXPECT_NEAR(s.fx[slot[1]], 2.5, 1e-6);
+  EXPECT_NEAR(s.fy[slot[1]], -1.5, 1e-6);
+}
+
+TEST(PairForces, CoincidentParticlesStayFinite) {
+  forces::InteractionTable t(1);
+  FluidParams p;
+  t.set(0, 0, {ownFunction(p), p.viscosity, 0});
+  ParticleStore s;
+  s.add(1, 1, 1, 0, 0, 0, 0, 0);
+  s.add(1, 1, 1, 1, 0, 0, 0, 0);
+  neighbors::CellGrid g;
+  g.rebuild(s, 1.5f);
+  accumulatePairForces(g, t, s);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_TRUE(std::isfinite(s.fx[i]) && std::isfinite(s.fy[i]) && std::isfinite(s.fz[i]));
+  }
+  EXPECT_FLOAT_EQ(s.fx[0] + s.fx[1], 0.0f);
+}
+
+}  // namespace
+}  // namespace softsub::fluid

@@ -1,0 +1,114 @@
+// Sampled tables: error bounded by linear-interpolation theory and tested; the
+// table's entries are what the pair kernel reads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "forces/interaction_table.h"
+
+namespace softsub::forces {
+namespace {
+
+// A priori bound of linear interpolation with pieces of width h: h^2/8 max|F''| on
+// smooth pieces; a piece with a clamp corner inside errs at most h/2 * max|F'| there.
+// Derivatives estimated from the formula on a fine grid; plus float rounding.
+double errorBound(const PairFunction& f, int intervals, double from) {
+  const double rc = cutoff(f), h = rc / intervals;
+  double bound = 0;
+  for (int k = 0; k < intervals; ++k) {
+    const double a = k * h;
+    if (a + h < from) continue;
+    double m1 = 0, m2 = 0, vmax = 0;
+    for (int s = 0; s <= 8; ++s) {
+      const double r = std::min(a + s * h / 8, rc * (1 - 1e-9));
+      const double e = h / 64;
+      const double fm = evaluate(f, std::max(r - e, 0.0)), f0 = evaluate(f, r), fp = evaluate(f, r + e);
+      m1 = std::max(m1, std::abs(fp - fm) / (2 * e));
+      m2 = std::max(m2, std::abs(fp - 2 * f0 + fm) / (e * e));
+      vmax = std::max(vmax, std::abs(f0));
+    }
+    bound = std::max(bound, std::min(h * h / 8 * m2, h / 2 * m1) + 4e-7 * vmax + 1e-12);
+  }
+  return bound;
+}
+
+// Largest |table - formula| over [from, cutoff).
+double maxError(const PairFunction& f, const SampledFunction& s, double from) {
+  double err = 0;
+  const double rc = cutoff(f);
+  for (int k = 0; k < 200000; ++k) {
+    const double r = from + (rc - from) * k / 200000.0;
+    err = std::max(err, std::abs(s.at(r) - evaluate(f, r)));
+  }
+  return err;
+}
+
+TEST(SampledFunction, ErrorWithinInterpolationBoundForEveryKind) {
+  const PairFunction fns[] = {
+      Linear{5, 1, 0, 5}, Linear{5, 1.5, 0, 5}, LennardJones{30, 1, -20, 400, 1.5},
+      LennardJones{2, 0.5, -1, 40, 1.2}, LennardJonesForce{1, 1, 2.5}, Curve{{0.1, 3, 0.6, -1, 1.1, 0.5}}};
+  for (const PairFunction& f : fns) {
+    // The true LJ force is unbounded at r -> 0; it is checked where particles can be.
+    const double from = std::holds_alternative<LennardJonesForce>(f) ? 0.8 : 0.0;
+    const SampledFunction s = sample(f, kDefaultIntervals);
+    const double bound = errorBound(f, kDefaultIntervals, from);
+    const double err = maxError(f, s, from);
+    EXPECT_LE(err, bound) << kindName(f);
+  }
+}
+
+TEST(SampledFunction, ErrorConvergesQuadraticallyOnSmoothFunctions) {
+  // Doubling the samples divides the error of a smooth function by ~4.
+  const PairFunction f = LennardJonesForce{1, 1, 2.5};
+  const double coarse = maxError(f, sample(f, 512), 0.85);
+  const double fine = maxError(f, sample(f, 1024), 0.85);
+  EXPECT_GT(coarse / fine, 3.5);
+  EXPECT_LT(coarse / fine, 4.5);
+}
+
+TEST(SampledFunction, RelativeErrorOfTheDefaultTablesIsSmall) {
+  // Over the range particles actually sit (r >= 0.85 sigma), the true LJ force table
+  // is within 1e-3 of the largest force there.
+  const PairFunction f = LennardJonesForce{1, 1, 2.5};
+  const SampledFunction s = sample(f);
+  double err = 0, fmax = 0;
+  for (double r = 0.85; r < 2.5; r += 1e-5) {
+    err = std::max(err, std::abs(s.at(r) - evaluate(f, r)));
+    fmax = std::max(fmax, std::abs(evaluate(f, r)));
+  }
+  EXPECT_LT(err / fmax, 1e-3);
+}
+
+TEST(SampledFunction, KeepsValueUpToAJumpAtTheCutoff) {
+  const LennardJones f{10, 1, -100, 100, 1.3};  // F(1.3-) is about -7.5: a jump to 0
+  const SampledFunction s = sample(f);
+  EXPECT_NEAR(s.at(1.3 - 1e-6), evaluate(f, 1.3 - 1e-6), 1e-3);
+  EXPECT_EQ(s.at(1.3), 0.0);
+  EXPECT_EQ(s.at(5.0), 0.0);
+}
+
+TEST(InteractionTable, SymmetricEntriesSharedSamplesAndMaxCutoff) {
+  InteractionTable t(3);
+  const Interaction global{Linear{5, 1, 0, 5}, 0, 0};
+  t.set(0, 1, global);
+  t.set(0, 2, global);
+  t.set(1, 2, {Linear{8, 1.5, 0, 8}, 0.5, 2});
+  t.set(0, 0, {LennardJones{30, 1, -20, 400, 1.5}, 1, 0});
+  EXPECT_EQ(t.entry(0, 1).offset, t.entry(1, 0).offset);
+  EXPECT_EQ(t.entry(0, 1).offset, t.entry(0, 2).offset) << "identical functions share samples";
+  EXPECT_EQ(t.samples().size(), 3u * 2 * kDefaultIntervals);
+  EXPECT_FLOAT_EQ(t.entry(2, 1).damping, 0.5f);
+  EXPECT_FLOAT_EQ(t.entry(2, 1).relativeVelocity, 2.0f);
+  EXPECT_FLOAT_EQ(t.entry(1, 2).cutoff2, 2.25f);
+  EXPECT_EQ(t.entry(1, 1).cutoff2, 0.0f) << "unset pairs do nothing";
+  EXPECT_DOUBLE_EQ(t.maxCutoff(), 1.5);
+  for (double r = 0; r < 1.6; r += 0.01) {
+    EXPECT_NEAR(t.sampledAt(0, 0, r), sample(t.interaction(0, 0).function).at(r),
+                1e-4 * (1 + std::abs(sample(t.interaction(0, 0).function).at(r))));
+    EXPECT_NEAR(t.sampledAt(1, 2, r), evaluate(Linear{8, 1.5, 0, 8}, r), 1e-4);
+  }
+}
+
+}  // namespace
+}  // namespace softsub::forces

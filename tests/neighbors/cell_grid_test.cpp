@@ -1,0 +1,127 @@
+// The grid must list exactly the brute-force pairs, each once, whatever the layout.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "neighbors/cell_grid.h"
+
+namespace softsub::neighbors {
+namespace {
+
+using Pair = std::pair<std::uint32_t, std::uint32_t>;
+
+ParticleStore cloud(std::size_t n, float lo, float hi, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(lo, hi);
+  ParticleStore s;
+  for (std::size_t i = 0; i < n; ++i) s.add(u(rng), u(rng), u(rng), 0, 0, 0, 0, 0);
+  return s;
+}
+
+// Pairs within the cutoff found by the grid, as sorted (id, id) pairs.
+std::vector<Pair> gridPairs(const CellGrid& g, const ParticleStore& s, float cutoff, std::size_t* visits) {
+  std::vector<Pair> out;
+  const float c2 = cutoff * cutoff;
+  std::size_t count = 0;
+  g.forEachCandidatePair([&](std::uint32_t i, std::uint32_t j) {
+    ++count;
+    const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+    if (dx * dx + dy * dy + dz * dz < c2) out.emplace_back(std::min(s.id[i], s.id[j]), std::max(s.id[i], s.id[j]));
+  });
+  if (visits) *visits = count;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Pair> brutePairs(const ParticleStore& s, float cutoff) {
+  std::vector<Pair> out;
+  for (auto [i, j] : bruteForcePairs(s, cutoff)) out.emplace_back(std::min(s.id[i], s.id[j]), std::max(s.id[i], s.id[j]));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(CellGrid, MatchesBruteForceOnRandomClouds) {
+  for (std::uint32_t seed = 1; seed <= 8; ++seed) {
+    ParticleStore s = cloud(1500, -5, 5, seed);
+    const float cutoff = 0.5f + 0.25f * static_cast<float>(seed % 4);
+    CellGrid g;
+    g.rebuild(s, cutoff);
+    const auto expected = brutePairs(s, cutoff);
+    const auto got = gridPairs(g, s, cutoff, nullptr);
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(got, expected) << "seed " << seed;  // also proves no pair is listed twice
+  }
+}
+
+TEST(CellGrid, FarOutliersNeitherLosePairsNorGrowMemory) {
+  ParticleStore s = cloud(2000, 0, 6, 42);
+  const std::size_t before = [&] {
+    CellGrid g;
+    g.rebuild(s, 0.7f);
+    return g.memoryBytes();
+  }();
+  // Outliers far away in every direction, including a close pair far out, values that
+  // alias under the 21-bit wrap (2^21 cells away) and huge coordinates.
+  const float h = 0.7f;
+  const float wrap = h * 2097152.0f;
+  s.add(1e9f, 1e9f, 1e9f, 0, 0, 0, 0, 0);
+  s.add(1e9f + 0.1f * 64, 1e9f, 1e9f, 0, 0, 0, 0, 0);
+  s.add(-3e8f, 5, 5, 0, 0, 0, 0, 0);
+  s.add(1.0f + wrap, 1.0f, 1.0f, 0, 0, 0, 0, 0);  // aliases a cell inside the cloud
+  s.add(1.3f + wrap, 1.0f, 1.0f, 0, 0, 0, 0, 0);  // and is within the cutoff of the previous
+  s.add(3.0e38f, -3.0e38f, 0, 0, 0, 0, 0, 0);
+  CellGrid g;
+  g.rebuild(s, h);
+  EXPECT_EQ(gridPairs(g, s, h, nullptr), brutePairs(s, h));
+  // Memory depends on the particle count, not on the extent.
+  EXPECT_LT(g.memoryBytes(), 2 * before + 4096);
+}
+
+TEST(CellGrid, RebuildAfterMotionAndIdentityOrder) {
+  ParticleStore s = cloud(800, -3, 3, 7);
+  CellGrid g;
+  g.rebuild(s, 0.6f);
+  EXPECT_TRUE(g.reordered());
+  g.rebuild(s, 0.6f);
+  EXPECT_FALSE(g.reordered()) << "already sorted input must not be permuted again";
+  std::mt19937 rng(3);
+  std::normal_distribution<float> d(0, 0.05f);
+  for (std::size_t i = 0; i < s.size(); ++i) { s.px[i] += d(rng); s.py[i] += d(rng); s.pz[i] += d(rng); }
+  g.rebuild(s, 0.6f);  // nearly sorted: the insertion-sort path
+  EXPECT_EQ(gridPairs(g, s, 0.6f, nullptr), brutePairs(s, 0.6f));
+  // Ids survive the permutations as a permutation of 0..n-1.
+  std::vector<std::uint32_t> ids = s.id;
+  std::sort(ids.begin(), ids.end());
+  for (std::uint32_t k = 0; k < ids.size(); ++k) ASSERT_EQ(ids[k], k);
+}
+
+TEST(CellGrid, CandidatePairsAreBoundedByCellVolume) {
+  // A dense lattice: candidates must stay a small multiple of true pairs (27 cells of
+  // side h versus a sphere of radius h: about 6.5x in the bulk, more at boundaries; half of them by Newton's law).
+  ParticleStore s;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k) s.add(0.5f * i, 0.5f * j, 0.5f * k, 0, 0, 0, 0, 0);
+  CellGrid g;
+  g.rebuild(s, 1.0f);
+  std::size_t visits = 0;
+  const auto pairs = gridPairs(g, s, 1.0f, &visits);
+  EXPECT_EQ(pairs, brutePairs(s, 1.0f));
+  EXPECT_LT(static_cast<double>(visits), 8.0 * static_cast<double>(pairs.size()));
+}
+
+TEST(CellGrid, EmptyAndSingle) {
+  ParticleStore s;
+  CellGrid g;
+  g.rebuild(s, 1.0f);
+  EXPECT_EQ(g.cellCount(), 0u);
+  s.add(0, 0, 0, 0, 0, 0, 0, 0);
+  g.rebuild(s, 1.0f);
+  EXPECT_EQ(g.cellCount(), 1u);
+  EXPECT_TRUE(gridPairs(g, s, 1.0f, nullptr).empty());
+}
+
+}  // namespace
+}  // namespace softsub::neighbors

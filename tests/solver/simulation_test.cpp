@@ -1,0 +1,214 @@
+// Conservation laws, determinism, id order and blow-up detection of the stepper.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "solver/frame_loop.h"
+#include "solver/simulation.h"
+#include "support/scenarios.h"
+
+namespace softsub::solver {
+namespace {
+
+// Two fluids with every velocity term switched on; no gravity, no walls.
+Model twoFluids() {
+  Model m;
+  m.gravity = Vec3::Zero();
+  m.integrator = Integrator::SymplecticEuler;
+  m.fluids.push_back({"a", {1, 0, 0}, 1, 1.0, 0, 0});
+  m.fluids.push_back({"b", {0, 0, 1}, 1, 2.5, 0, 0});
+  m.materials.push_back({1.0f, 0.5f});
+  m.materials.push_back({1.0f / 2.5f, 0.5f});
+  m.table = forces::InteractionTable(2);
+  fluid::FluidParams p;
+  p.viscosity = 0.8;
+  m.table.set(0, 0, {fluid::ownFunction(p), p.viscosity, 0});
+  m.table.set(1, 1, {forces::LennardJones{10, 0.9, -5, 100, 1.4}, 0.3, 0});
+  m.table.set(0, 1, {forces::Linear{5, 1, 0, 5}, 0.2, 1.0});
+  return m;
+}
+
+State cloudState(std::size_t n, std::uint32_t seed, Model& m) {
+  State s;
+  s.particles = scenarios::randomCloud(n, -6, 6, 1.5f, 2, seed);
+  std::uint32_t counts[2] = {0, 0};
+  for (std::size_t i = 0; i < s.particles.size(); ++i) ++counts[s.particles.material[i]];
+  m.fluids[0].count = counts[0];
+  m.fluids[1].firstId = counts[0];
+  m.fluids[1].count = counts[1];
+  // Ids must be grouped per fluid: give material 0 the first ids.
+  std::uint32_t next[2] = {0, counts[0]};
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles.id[i] = next[s.particles.material[i]]++;
+  return s;
+}
+
+std::array<double, 3> momentum(const Model& m, const ParticleStore& p) {
+  std::array<double, 3> q{0, 0, 0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double mass = 1.0 / m.materials[p.material[i]].inverseMass;
+    q[0] += mass * p.vx[i]; q[1] += mass * p.vy[i]; q[2] += mass * p.vz[i];
+  }
+  return q;
+}
+
+TEST(Simulation, MomentumConservedWithoutGravityOrWalls) {
+  for (Integrator in : {Integrator::ExplicitEuler, Integrator::SymplecticEuler, Integrator::VelocityVerlet}) {
+    Model m = twoFluids();
+    m.integrator = in;
+    Simulation sim(m, cloudState(2000, 9, m));
+    const auto q0 = momentum(m, sim.state().particles);
+    double scale = 0;
+    for (std::size_t i = 0; i < sim.state().particles.size(); ++i)
+      scale += std::abs(sim.state().particles.vx[i]) + std::abs(sim.state().particles.vy[i]);
+    for (int k = 0; k < 3; ++k) sim.advanceFrame();
+    const auto q1 = momentum(m, sim.state().particles);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(q1[a], q0[a], 2e-6 * scale) << "axis " << a;
+  }
+}
+
+TEST(Simulation, VelocityVerletConservesEnergyOfATrueLennardJonesCluster) {
+  Model m;
+  m.gravity = Vec3::Zero();
+  m.integrator = Integrator::VelocityVerlet;
+  m.framesPerSecond = 24;
+  m.substeps = 200;
+  m.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 27});
+  m.materials.push_back({1.0f, 0.5f});
+  m.table = forces::InteractionTable(1);
+  const forces::LennardJonesForce lj{1, 1, 2.5};
+  m.table.set(0, 0, {lj, 0, 0});
+  State s;
+  for (int i = 0; i < 27; ++i)
+    s.particles.add(1.15f * (i % 3), 1.15f * ((i / 3) % 3), 1.15f * (i / 9), 0.1f * ((i * 7) % 5 - 2),
+                    0.1f * ((i * 3) % 5 - 2), 0.1f * ((i * 11) % 5 - 2), 0, 0);
+  auto energy = [&](const ParticleStore& p) {
+    double e = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      e += 0.5 * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+      for (std::size_t j = i + 1; j < p.size(); ++j) {
+        const double dx = p.px[j] - p.px[i], dy = p.py[j] - p.py[i], dz = p.pz[j] - p.pz[i];
+        e += forces::potential(lj, std::sqrt(dx * dx + dy * dy + dz * dz));
+      }
+    }
+    return e;
+  };
+  Simulation sim(m, s);
+  const double e0 = energy(sim.state().particles);
+  double worst = 0;
+  for (int f = 0; f < 24; ++f) {
+    sim.advanceFrame();
+    worst = std::max(worst, std::abs(energy(sim.state().particles) - e0));
+  }
+  // The cutoff makes U jump by U(rc) ~ 0.016 eps per pair crossing; the integrator and
+  // the float tables add far less.
+  EXPECT_LT(worst, 0.05 * std::abs(e0)) << "E0 = " << e0;
+}
+
+TEST(Simulation, RerunsAreBitwiseIdentical) {
+  auto run = [] {
+    Model m = twoFluids();
+    m.gravity = Vec3(0, -9.81, 0);
+    Container c;
+    c.lo = {-6, -6, -6};
+    c.hi = {6, 6, 6};
+    m.container = c;
+    Simulation sim(m, cloudState(3000, 4, m));
+    for (int f = 0; f < 4; ++f) sim.advanceFrame();
+    return sim.snapshot();
+  };
+  const FrameSnapshot a = run(), b = run();
+  ASSERT_EQ(a.fluids.size(), b.fluids.size());
+  for (std::size_t f = 0; f < a.fluids.size(); ++f) {
+    ASSERT_EQ(a.fluids[f].positions.size(), b.fluids[f].positions.size());
+    EXPECT_EQ(0, std::memcmp(a.fluids[f].positions.data(), b.fluids[f].positions.data(),
+                             a.fluids[f].positions.size() * sizeof(float)));
+    EXPECT_EQ(0, std::memcmp(a.fluids[f].velocities.data(), b.fluids[f].velocities.data(),
+                             a.fluids[f].velocities.size() * sizeof(float)));
+  }
+}
+
+TEST(Simulation, SnapshotIsInStableIdOrderWhateverTheSorting) {
+  Model m = twoFluids();
+  m.table = forces::InteractionTable(2);  // no interactions: particles fly straight
+  m.table.set(0, 0, {forces::Linear{0, 0.5, 0, 0}, 0, 0});
+  State s = cloudState(500, 3, m);
+  std::vector<std::array<float, 6>> initial(s.particles.size());
+  for (std::size_t i = 0; i < s.particles.size(); ++i)
+    initial[s.particles.id[i]] = {s.particles.px[i], s.particles.py[i], s.particles.pz[i],
+                                  s.particles.vx[i], s.particles.vy[i], s.particles.vz[i]};
+  Simulation sim(m, s);
+  sim.advanceFrame();  // sorts the store by cell
+  const FrameSnapshot snap = sim.snapshot();
+  const double t = 1.0 / 24;
+  std::uint32_t expectedId = 0;
+  for (const FluidSnapshot& f : snap.fluids)
+    for (std::size_t k = 0; k < f.count(); ++k, ++expectedId) {
+      ASSERT_EQ(f.ids[k], expectedId);
+      for (int a = 0; a < 3; ++a)
+        ASSERT_NEAR(f.positions[3 * k + a], initial[expectedId][a] + t * initial[expectedId][3 + a], 1e-4);
+    }
+  EXPECT_EQ(snap.frame, 1);
+  EXPECT_DOUBLE_EQ(snap.time, t);
+}
+
+TEST(Simulation, WallsKeepEveryParticleInsideTheContainer) {
+  Model m;
+  State s;
+  scenarios::fluidBlock(3000, 1.0, m, s);
+  m.container->lo = {-8, 0, -8};
+  m.container->hi = {8, 30, 8};
+  m.container->closed = true;
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles.vx[i] = 40.0f * ((i % 3) - 1.0f);
+  Simulation sim(m, s);
+  for (int f = 0; f < 12; ++f) {
+    sim.advanceFrame();
+    const ParticleStore& p = sim.state().particles;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      ASSERT_GE(p.px[i], -7.5f); ASSERT_LE(p.px[i], 7.5f);
+      ASSERT_GE(p.py[i], 0.5f);  ASSERT_LE(p.py[i], 29.5f);
+      ASSERT_GE(p.pz[i], -7.5f); ASSERT_LE(p.pz[i], 7.5f);
+    }
+  }
+}
+
+TEST(Simulation, BlowUpIsReportedWithFrameFluidAndParticle) {
+  Model m = twoFluids();
+  State s = cloudState(50, 1, m);
+  s.particles.vy[7] = std::numeric_limits<float>::quiet_NaN();
+  const std::uint32_t id = s.particles.id[7];
+  Simulation sim(m, s);
+  try {
+    sim.advanceFrame();
+    FAIL() << "expected BlowUpError";
+  } catch (const BlowUpError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("frame 1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("particle id " + std::to_string(id)), std::string::npos) << msg;
+    EXPECT_NE(msg.find("is nan"), std::string::npos) << msg;
+  }
+}
+
+TEST(FrameLoop, ObserversSeeFrameZeroThenEveryFrameAndStopEarly) {
+  struct Recorder : FrameObserver {
+    std::vector<std::int64_t> frames;
+    void onFrame(const FrameSnapshot& f) override { frames.push_back(f.frame); }
+  } rec;
+  Model m = twoFluids();
+  Simulation sim(m, cloudState(100, 2, m));
+  FrameObserver* obs[] = {&rec};
+  int progressCalls = 0;
+  FrameLoopHooks hooks;
+  hooks.onProgress = [&](const FrameProgress& p) { ++progressCalls; EXPECT_EQ(p.lastFrame, 3); };
+  EXPECT_TRUE(runFrames(sim, 3, obs, hooks));
+  EXPECT_EQ(rec.frames, (std::vector<std::int64_t>{0, 1, 2, 3}));
+  EXPECT_EQ(progressCalls, 3);
+  std::atomic<bool> stop{true};
+  hooks.stop = &stop;
+  EXPECT_FALSE(runFrames(sim, 6, obs, hooks));
+  EXPECT_EQ(sim.state().frame, 3);
+}
+
+}  // namespace
+}  // namespace softsub::solver
