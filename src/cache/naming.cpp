@@ -1,0 +1,57 @@
+#include "cache/naming.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace softsub::cache {
+
+std::string frameTag(std::int64_t frame) {
+  if (frame < 0) throw std::invalid_argument(fmt::format("frameTag: negative frame {}", frame));
+  return fmt::format("{:04d}", frame);
+}
+
+std::int64_t pdcTicks(std::int64_t frame, double fps) {
+  if (frame < 0) throw std::invalid_argument(fmt::format("pdcTicks: negative frame {}", frame));
+  if (!(fps > 0) || !std::isfinite(fps)) {
+    throw std::invalid_argument(fmt::format("pdcTicks: frames per second {} is not > 0", fps));
+  }
+  return std::llround(static_cast<double>(frame) * 6000.0 / fps);
+}
+
+void checkFileNamePart(std::string_view name, std::string_view element) {
+  const auto refuse = [&](std::string problem) {
+    throw InputError({"", 0, std::string(element)}, std::move(problem),
+                     "a non-empty name without '/', '\\' or control characters");
+  };
+  if (name.empty()) refuse("empty name cannot be used in a file name");
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '/' || c == '\\' || u < 0x20 || u == 0x7f) {
+      refuse(fmt::format("name '{}' cannot be used in a file name", name));
+    }
+  }
+}
+
+std::filesystem::path simPath(const std::filesystem::path& dir, std::string_view sceneName,
+                              std::int64_t frame) {
+  checkFileNamePart(sceneName, "scene name");
+  return dir / fmt::format("{}.{}.sim", sceneName, frameTag(frame));
+}
+
+std::filesystem::path pdcPath(const std::filesystem::path& dir, std::string_view fluidName,
+                              std::int64_t frame, double fps) {
+  checkFileNamePart(fluidName, "Fluid/Name");
+  return dir / "pdc" / fmt::format("{}Shape.{}.pdc", fluidName, pdcTicks(frame, fps));
+}
+
+std::filesystem::path plyPath(const std::filesystem::path& dir, std::string_view sceneName,
+                              std::int64_t frame) {
+  checkFileNamePart(sceneName, "scene name");
+  return dir / "ply" / fmt::format("{}.{}.ply", sceneName, frameTag(frame));
+}
+
+}  // namespace softsub::cache
