@@ -1,0 +1,806 @@
+#include "scene/reader.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <pugixml.hpp>
+#include <stdexcept>
+#include <utility>
+
+#include "core/error.h"
+#include "scene/fill.h"
+#include "scene/schema.h"
+
+namespace softsub::scene {
+
+namespace {
+
+constexpr std::string_view kRigidRefused =
+    "rigid objects are not supported yet (they arrive with rigid bodies, issue #3)";
+constexpr std::string_view kMeshRefused =
+    "mesh fills need mesh loading, which arrives with issue #3";
+constexpr std::string_view kOneFunction =
+    "exactly one of Linear, LennardJones, LennardJonesForce, Curve";
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> splitTokens(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && isSpace(s[i])) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !isSpace(s[i])) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+// A token for a message: quoted, and cut short when long.
+std::string shown(std::string_view s) {
+  constexpr std::size_t kMax = 40;
+  if (s.size() > kMax) return fmt::format("'{}...'", s.substr(0, kMax));
+  return fmt::format("'{}'", s);
+}
+
+// Parses one finite number; returns the problem, or "" when fine.
+std::string parseReal(std::string_view token, double& out) {
+  std::string_view t = token;
+  if (t.size() > 1 && t[0] == '+' && t[1] != '+' && t[1] != '-') t.remove_prefix(1);
+  const char* end = t.data() + t.size();
+  const auto [ptr, ec] = std::from_chars(t.data(), end, out);
+  if (ec == std::errc::result_out_of_range) {
+    return fmt::format("{} is beyond the range of numbers", shown(token));
+  }
+  if (ec != std::errc{} || ptr != end) return fmt::format("{} is not a number", shown(token));
+  if (!std::isfinite(out)) return fmt::format("{} is not a finite number", shown(token));
+  return {};
+}
+
+// Parses one integer; returns the problem, or "" when fine.
+std::string parseInt(std::string_view token, std::int64_t& out) {
+  std::string_view t = token;
+  if (t.size() > 1 && t[0] == '+' && t[1] != '+' && t[1] != '-') t.remove_prefix(1);
+  const char* end = t.data() + t.size();
+  const auto [ptr, ec] = std::from_chars(t.data(), end, out);
+  if (ec == std::errc::result_out_of_range) {
+    return fmt::format("{} is beyond the range of integers", shown(token));
+  }
+  if (ec != std::errc{} || ptr != end) {
+    double d = 0;
+    if (parseReal(token, d).empty()) return fmt::format("{} is not an integer", shown(token));
+    return fmt::format("{} is not a number", shown(token));
+  }
+  return {};
+}
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0U : 1U)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+bool equalIgnoringCase(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) ==
+                  std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// " (did you mean X?)" for a near miss among the candidates, else "".
+std::string suggestion(std::string_view name, const std::vector<std::string_view>& candidates) {
+  for (const auto c : candidates) {
+    if (equalIgnoringCase(name, c)) {
+      return fmt::format(" (did you mean <{}>? element names are case-sensitive)", c);
+    }
+  }
+  std::string_view best;
+  std::size_t bestDistance = 3;
+  for (const auto c : candidates) {
+    const std::size_t d = editDistance(name, c);
+    if (d < bestDistance && d < c.size()) {
+      best = c;
+      bestDistance = d;
+    }
+  }
+  return best.empty() ? std::string() : fmt::format(" (did you mean <{}>?)", best);
+}
+
+bool isNameChar(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
+}
+
+bool validName(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), isNameChar); }
+
+template <class S>
+const FieldInfo& infoOf(std::string_view tag) {
+  for (const auto& f : fieldsOf<S>()) {
+    if (f.tag == tag) return f;
+  }
+  throw std::logic_error("no field " + std::string(tag));
+}
+
+std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) {
+  return b > UINT64_MAX - a ? UINT64_MAX : a + b;
+}
+
+// ---------------------------------------------------------------------------------------
+
+// The text being read: file name, line table, options; raises InputErrors.
+class Context {
+ public:
+  Context(std::string_view text, std::string file, const ReadOptions& readOptions)
+      : options(readOptions), file_(std::move(file)) {
+    lineStarts_.push_back(0);
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      if (text[i] == '\n') lineStarts_.push_back(i + 1);
+    }
+  }
+
+  [[nodiscard]] int lineAt(std::ptrdiff_t offset) const {
+    if (offset < 0) return 0;
+    const auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(),
+                                     static_cast<std::size_t>(offset));
+    return static_cast<int>(it - lineStarts_.begin());
+  }
+  [[nodiscard]] int lineOf(pugi::xml_node node) const { return lineAt(node.offset_debug()); }
+
+  [[noreturn]] void fail(int line, std::string element, std::string problem,
+                         std::string allowed = {}) const {
+    throw InputError({file_, line, std::move(element)}, std::move(problem), std::move(allowed));
+  }
+
+  const ReadOptions& options;
+
+ private:
+  std::string file_;
+  std::vector<std::size_t> lineStarts_;
+};
+
+// The text of a value element; a value element has no child elements.
+std::string leafText(const Context& cx, pugi::xml_node node, const std::string& path) {
+  std::string text;
+  for (const pugi::xml_node child : node.children()) {
+    if (child.type() == pugi::node_element) {
+      cx.fail(cx.lineOf(child), path + "/" + child.name(),
+              fmt::format("unknown element <{}>", child.name()),
+              fmt::format("a value only: <{}> has no child elements", node.name()));
+    }
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+      if (!text.empty()) text += ' ';
+      text += child.value();
+    }
+  }
+  return text;
+}
+
+// Parses a value element by its field's kind, checking every number and rule of the kind.
+class ValueParser {
+ public:
+  ValueParser(const Context& cx, pugi::xml_node node, const std::string& path, const FieldInfo& f)
+      : cx_(cx), node_(node), path_(path), f_(f), text_(leafText(cx, node, path)),
+        tokens_(splitTokens(text_)) {}
+
+  Value parse() const {
+    switch (f_.kind) {
+      case Kind::Real: return number(single());
+      case Kind::Int: return integer(single());
+      case Kind::Bool: return boolean(single());
+      case Kind::Vec3:
+      case Kind::Colour:
+        if (tokens_.size() != 3) bad(fmt::format("expected 3 numbers, got {}", tokens_.size()));
+        return Vec3(number(tokens_[0]), number(tokens_[1]), number(tokens_[2]));
+      case Kind::String:
+        if (trim(text_).empty()) bad("the value is empty");
+        return std::string(trim(text_));
+      case Kind::Enum: return choice(single());
+      case Kind::RealList: {
+        std::vector<double> list;
+        list.reserve(tokens_.size());
+        for (const auto t : tokens_) list.push_back(number(t));
+        return list;
+      }
+      case Kind::PointList: {
+        if (tokens_.size() % 3 != 0) {
+          bad(fmt::format("{} numbers do not make whole positions (3 numbers each)",
+                          tokens_.size()));
+        }
+        std::vector<Vec3> points;
+        points.reserve(tokens_.size() / 3);
+        for (std::size_t i = 0; i < tokens_.size(); i += 3) {
+          points.emplace_back(number(tokens_[i]), number(tokens_[i + 1]), number(tokens_[i + 2]));
+        }
+        return points;
+      }
+    }
+    bad("unsupported value kind");
+  }
+
+ private:
+  [[noreturn]] void bad(const std::string& problem) const {
+    cx_.fail(cx_.lineOf(node_), path_, problem, allowedText(f_));
+  }
+
+  [[nodiscard]] std::string_view single() const {
+    if (tokens_.empty()) bad("the value is empty");
+    if (tokens_.size() > 1) {
+      bad(fmt::format("expected one value, got {}: {}", tokens_.size(), shown(trim(text_))));
+    }
+    return tokens_[0];
+  }
+
+  [[nodiscard]] double number(std::string_view token) const {
+    double v = 0;
+    if (auto problem = parseReal(token, v); !problem.empty()) bad(problem);
+    if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token));
+    return v;
+  }
+
+  [[nodiscard]] std::int64_t integer(std::string_view token) const {
+    std::int64_t v = 0;
+    if (auto problem = parseInt(token, v); !problem.empty()) bad(problem);
+    if (!f_.range.contains(static_cast<double>(v))) bad(fmt::format("{} is out of range", v));
+    return v;
+  }
+
+  [[nodiscard]] bool boolean(std::string_view token) const {
+    if (token == "true" || token == "1") return true;
+    if (token == "false" || token == "0") return false;
+    bad(fmt::format("{} is not a boolean", shown(token)));
+  }
+
+  [[nodiscard]] std::int64_t choice(std::string_view token) const {
+    for (std::size_t i = 0; i < f_.choices.size(); ++i) {
+      if (f_.choices[i] == token) return static_cast<std::int64_t>(i);
+    }
+    bad(fmt::format("{} is not one of the choices", shown(token)));
+  }
+
+  const Context& cx_;
+  pugi::xml_node node_;
+  const std::string& path_;
+  const FieldInfo& f_;
+  std::string text_;
+  std::vector<std::string_view> tokens_;
+};
+
+Value parseValue(const Context& cx, pugi::xml_node node, const std::string& path,
+                 const FieldInfo& f) {
+  return ValueParser(cx, node, path, f).parse();
+}
+
+// The child elements one element accepts, dispatched in document order. Rejects
+// unknown, refused and repeated elements, attributes and stray text; after the run,
+// missing required fields.
+class Children {
+ public:
+  using Handler = std::function<void(pugi::xml_node, const std::string& path)>;
+
+  Children(const Context& cx, pugi::xml_node parent, std::string path)
+      : cx_(cx), parent_(parent), path_(std::move(path)) {}
+  Children(const Children&) = delete;
+  Children& operator=(const Children&) = delete;
+
+  // Value fields stored into target.
+  template <class S>
+  void fields(std::span<const Field<S>> table, S& target) {
+    for (const Field<S>& f : table) {
+      Entry e{f.tag, false, f.required ? allowedText(f) : std::string(), {}, {}, {}};
+      e.handle = [this, &f, &target](pugi::xml_node node, const std::string& path) {
+        Value v = parseValue(cx_, node, path, f);
+        if (f.set != nullptr) {
+          f.set(target, std::move(v));
+        } else {
+          derived_.insert_or_assign(f.tag, std::move(v));
+        }
+      };
+      entries_.push_back(std::move(e));
+    }
+  }
+
+  // A structural child element, as listed in the schema's elements().
+  void element(std::string_view tag, Handler handle) {
+    const ElementInfo* info = findElement(parent_.name(), tag);
+    if (info == nullptr) throw std::logic_error(fmt::format("<{}> not in elements()", tag));
+    entries_.push_back({tag, info->repeatable, {}, std::move(handle), {}, {}});
+  }
+
+  // A tag refused with a message; allowed "" means the accepted tags.
+  void refuse(std::string_view tag, std::string problem, std::string allowed = {}) {
+    entries_.push_back({tag, false, {}, {}, std::move(problem), std::move(allowed)});
+  }
+
+  [[nodiscard]] bool accepts(std::string_view tag) const { return find(tag) != nullptr; }
+
+  void run() {
+    for (const pugi::xml_node child : parent_.children()) {
+      if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+        const std::string_view text = trim(child.value());
+        if (!text.empty()) {
+          const int line = cx_.lineOf(child);
+          cx_.fail(line > 0 ? line : cx_.lineOf(parent_), selfPath(),
+                   fmt::format("unexpected text {}", shown(text)),
+                   fmt::format("child elements only: {}", acceptedList()));
+        }
+        continue;
+      }
+      if (child.type() != pugi::node_element) continue;  // comments, instructions
+      dispatch(child);
+    }
+    for (const Entry& e : entries_) {
+      if (!e.requiredAllowed.empty() && !seen_.contains(e.tag)) {
+        cx_.fail(line(), selfPath(), fmt::format("missing required <{}>", e.tag),
+                 e.requiredAllowed);
+      }
+    }
+  }
+
+  [[nodiscard]] const std::string& path() const { return path_; }
+  /// The path naming this element itself in messages.
+  [[nodiscard]] std::string selfPath() const { return path_.empty() ? std::string("Scene") : path_; }
+  [[nodiscard]] int line() const { return cx_.lineOf(parent_); }
+  /// Line of the first tag element, 0 when absent.
+  [[nodiscard]] int lineOf(std::string_view tag) const {
+    const auto it = seen_.find(tag);
+    return it == seen_.end() ? 0 : it->second;
+  }
+  /// A derived field's value as read, null when absent.
+  [[nodiscard]] const Value* derived(std::string_view tag) const {
+    const auto it = derived_.find(tag);
+    return it == derived_.end() ? nullptr : &it->second;
+  }
+  [[nodiscard]] std::string childPath(std::string_view tag) const {
+    return path_.empty() ? std::string(tag) : path_ + "/" + std::string(tag);
+  }
+
+  // The element named by the later of two tags present, for cross-field messages.
+  [[nodiscard]] std::pair<int, std::string> where(std::string_view first,
+                                                  std::string_view second) const {
+    if (lineOf(second) > 0) return {lineOf(second), childPath(second)};
+    if (lineOf(first) > 0) return {lineOf(first), childPath(first)};
+    return {line(), selfPath()};
+  }
+
+ private:
+  struct Entry {
+    std::string_view tag;
+    bool repeatable = false;
+    std::string requiredAllowed;  // non-empty: required, and what is allowed
+    Handler handle;
+    std::string refusal;  // non-empty: refused with this problem
+    std::string refusalAllowed;
+  };
+
+  [[nodiscard]] const Entry* find(std::string_view tag) const {
+    for (const Entry& e : entries_) {
+      if (e.tag == tag) return &e;
+    }
+    return nullptr;
+  }
+
+  [[nodiscard]] std::vector<std::string_view> acceptedTags() const {
+    std::vector<std::string_view> tags;
+    for (const Entry& e : entries_) {
+      if (e.refusal.empty()) tags.push_back(e.tag);
+    }
+    return tags;
+  }
+
+  [[nodiscard]] std::string acceptedList() const {
+    std::string s;
+    for (const auto t : acceptedTags()) s += (s.empty() ? "" : ", ") + std::string(t);
+    return s.empty() ? std::string("none") : s;
+  }
+
+  void dispatch(pugi::xml_node child) {
+    const std::string_view name = child.name();
+    const std::string path = childPath(name);
+    const int line = cx_.lineOf(child);
+    if (const pugi::xml_attribute a = child.first_attribute()) {
+      cx_.fail(line, path, fmt::format("unknown attribute '{}'", a.name()),
+               "no attributes: values go inside elements");
+    }
+    const Entry* e = find(name);
+    if (e == nullptr) {
+      cx_.fail(line, path,
+               fmt::format("unknown element <{}>{}", name, suggestion(name, acceptedTags())),
+               fmt::format("in <{}>: {}", parent_.name(), acceptedList()));
+    }
+    if (!e->refusal.empty()) {
+      cx_.fail(line, path, e->refusal, e->refusalAllowed.empty() ? acceptedList() : e->refusalAllowed);
+    }
+    if (const auto it = seen_.find(e->tag); it != seen_.end() && !e->repeatable) {
+      cx_.fail(line, path, fmt::format("<{}> is given twice (first at line {})", name, it->second),
+               fmt::format("one <{}> in each <{}>", name, parent_.name()));
+    }
+    seen_.emplace(e->tag, line);
+    e->handle(child, path);
+  }
+
+  const Context& cx_;
+  pugi::xml_node parent_;
+  std::string path_;
+  std::vector<Entry> entries_;
+  std::map<std::string_view, int> seen_;
+  std::map<std::string_view, Value> derived_;
+};
+
+// The first child element named tag, trimmed text; "" when absent.
+std::string childText(pugi::xml_node node, const char* tag) {
+  return std::string(trim(node.child(tag).child_value()));
+}
+
+}  // namespace
+
+namespace {
+
+// Reads a whole document into a SceneDesc, element by element.
+class SceneReader {
+ public:
+  explicit SceneReader(const Context& cx) : cx_(cx) {}
+
+  SceneDesc read(const pugi::xml_document& doc) {
+    const pugi::xml_node root = findRoot(doc);
+    checkRootAttributes(root);
+    Children c(cx_, root, "");
+    c.element("Simulation", [&](pugi::xml_node n, const std::string& p) {
+      readFields(n, p, scene_.simulation);
+    });
+    c.element("Camera", [&](pugi::xml_node n, const std::string& p) {
+      readFields(n, p, scene_.camera);
+    });
+    c.element("Environment", [&](pugi::xml_node n, const std::string& p) {
+      readFields(n, p, scene_.environment.emplace());
+    });
+    c.element("Fluid", [&](pugi::xml_node n, const std::string&) { readFluid(n); });
+    c.element("Interactions", [&](pugi::xml_node n, const std::string& p) {
+      readInteractions(n, p);
+    });
+    c.refuse("Object", std::string(kRigidRefused));
+    c.run();
+    checkPairs();
+    checkParticleCap();
+    return std::move(scene_);
+  }
+
+ private:
+  struct PairSource {
+    int aLine = 0;
+    int bLine = 0;
+    std::string path;
+  };
+
+  pugi::xml_node findRoot(const pugi::xml_document& doc) const {
+    pugi::xml_node root;
+    for (const pugi::xml_node n : doc.children()) {
+      if (n.type() == pugi::node_pcdata && !trim(n.value()).empty()) {
+        cx_.fail(cx_.lineOf(n), "Scene", "text outside the root element", "one <Scene> element");
+      }
+      if (n.type() != pugi::node_element) continue;
+      if (root) {
+        cx_.fail(cx_.lineOf(n), n.name(), fmt::format("a second root element <{}>", n.name()),
+                 "exactly one root element, <Scene>");
+      }
+      root = n;
+    }
+    if (!root) cx_.fail(1, "Scene", "no root element", "one <Scene version=\"1\"> element");
+    if (std::string_view(root.name()) != "Scene") {
+      cx_.fail(cx_.lineOf(root), root.name(),
+               fmt::format("the root element is <{}>{}", root.name(),
+                           suggestion(root.name(), {"Scene"})),
+               "<Scene version=\"1\">");
+    }
+    return root;
+  }
+
+  void checkRootAttributes(pugi::xml_node root) const {
+    for (const pugi::xml_attribute a : root.attributes()) {
+      if (std::string_view(a.name()) != "version") {
+        cx_.fail(cx_.lineOf(root), "Scene", fmt::format("unknown attribute '{}'", a.name()),
+                 "version");
+      }
+      if (std::string_view(a.value()) != "1") {
+        cx_.fail(cx_.lineOf(root), "Scene",
+                 fmt::format("unsupported format version {}", shown(a.value())), "version=\"1\"");
+      }
+    }
+  }
+
+  template <class S>
+  void readFields(pugi::xml_node node, const std::string& path, S& target) {
+    Children c(cx_, node, path);
+    c.fields(fieldsOf<S>(), target);
+    c.run();
+  }
+
+  void checkOrder(const Children& c, double lo, double hi, std::string_view loTag,
+                  std::string_view hiTag) const {
+    if (lo <= hi) return;
+    const auto [line, element] = c.where(loTag, hiTag);
+    cx_.fail(line, element, fmt::format("{} ({}) is greater than {} ({})", loTag, lo, hiTag, hi),
+             fmt::format("{} <= {}", loTag, hiTag));
+  }
+
+  void readFluid(pugi::xml_node node) {
+    FluidDesc fluid;
+    fluid.line = cx_.lineOf(node);
+    const std::string nameText = childText(node, "Name");
+    const std::string label = validName(nameText)
+                                  ? fmt::format("Fluid '{}'", nameText)
+                                  : fmt::format("Fluid[{}]", scene_.fluids.size() + 1);
+    Children c(cx_, node, label);
+    c.fields(fieldsOf<FluidDesc>(), fluid);
+    c.element("Fill", [&](pugi::xml_node n, const std::string&) {
+      fluid.fills.push_back(readFill(n, fmt::format("{}/Fill[{}]", label, fluid.fills.size() + 1)));
+    });
+    c.run();
+
+    if (!validName(fluid.name)) {
+      cx_.fail(c.lineOf("Name"), label + "/Name",
+               fmt::format("{} is not a valid fluid name", shown(fluid.name)),
+               allowedText(infoOf<FluidDesc>("Name")));
+    }
+    if (const auto [it, fresh] = nameLines_.emplace(fluid.name, c.lineOf("Name")); !fresh) {
+      cx_.fail(c.lineOf("Name"), label + "/Name",
+               fmt::format("the fluid name '{}' is already used (line {})", fluid.name, it->second),
+               "a name no other fluid has");
+    }
+    checkOrder(c, fluid.params.minimumForce, fluid.params.maximumForce, "MinimumForce",
+               "MaximumForce");
+    if (const Value* n = c.derived("NumberOfParticles")) {
+      const std::int64_t given = std::get<std::int64_t>(*n);
+      if (static_cast<std::uint64_t>(given) != fluid.particles.size()) {
+        cx_.fail(c.lineOf("NumberOfParticles"), label + "/NumberOfParticles",
+                 fmt::format("NumberOfParticles is {} but <Particles> holds {} positions", given,
+                             fluid.particles.size()),
+                 "the number of positions in <Particles> (3 numbers each)");
+      }
+    }
+    if (fluid.particles.empty() && fluid.fills.empty()) {
+      cx_.fail(fluid.line, label, "the fluid has no particles",
+               "explicit <Particles> or at least one <Fill>");
+    }
+    labels_.push_back(label);
+    scene_.fluids.push_back(std::move(fluid));
+  }
+
+  FillDesc readFill(pugi::xml_node node, const std::string& path) {
+    FillDesc fill;
+    fill.line = cx_.lineOf(node);
+    const FieldInfo& shapeInfo = infoOf<FillDesc>("Shape");
+    const pugi::xml_node shapeNode = node.child("Shape");
+    if (!shapeNode) {
+      cx_.fail(fill.line, path, "missing required <Shape>", allowedText(shapeInfo));
+    }
+    const auto shape = static_cast<FillShape>(
+        std::get<std::int64_t>(parseValue(cx_, shapeNode, path + "/Shape", shapeInfo)));
+    if (shape == FillShape::Mesh) {
+      cx_.fail(cx_.lineOf(shapeNode), path + "/Shape", std::string(kMeshRefused), "box, sphere");
+    }
+    Children c(cx_, node, path);
+    c.fields(fieldsOf<FillDesc>(), fill);
+    c.fields(fillShapeFields(shape), fill);
+    for (const FillShape other : {FillShape::Box, FillShape::Sphere, FillShape::Mesh}) {
+      for (const auto& f : fillShapeFields(other)) {
+        if (c.accepts(f.tag)) continue;
+        c.refuse(f.tag, fmt::format("<{}> belongs to {} fills, not to {} fills", f.tag,
+                                    kFillShapeNames[static_cast<int>(other)],
+                                    kFillShapeNames[static_cast<int>(shape)]));
+      }
+    }
+    c.run();
+    if (shape == FillShape::Box) {
+      for (int a = 0; a < 3; ++a) {
+        if (fill.min[a] < fill.max[a]) continue;
+        const auto [line, element] = c.where("Min", "Max");
+        cx_.fail(line, element,
+                 fmt::format("Min {} ({}) is not below Max {} ({})", "xyz"[a], fill.min[a],
+                             "xyz"[a], fill.max[a]),
+                 "Min < Max on every axis");
+      }
+    }
+    if (fillCount(fill) == 0) {
+      cx_.fail(fill.line, path, "the fill makes no particles",
+               "a fill with at least one lattice point: a box at least Spacing wide on every axis");
+    }
+    return fill;
+  }
+
+  void readInteractions(pugi::xml_node node, const std::string& path) {
+    Children c(cx_, node, path);
+    c.element("FluidFluid", [&](pugi::xml_node n, const std::string& p) {
+      InteractionDesc d;
+      Children fc(cx_, n, p);
+      fc.fields(fieldsOf<InteractionDesc>(), d);
+      runWithFunction(fc, d);
+      scene_.interactions.fluidFluid = std::move(d);
+    });
+    c.element("Pair", [&](pugi::xml_node n, const std::string&) { readPair(n, path); });
+    c.refuse("FluidObject", std::string(kRigidRefused));
+    c.run();
+  }
+
+  void readPair(pugi::xml_node node, const std::string& parentPath) {
+    PairDesc pair;
+    pair.line = cx_.lineOf(node);
+    const std::string a = childText(node, "A");
+    const std::string b = childText(node, "B");
+    const std::string path =
+        validName(a) && validName(b)
+            ? fmt::format("{}/Pair '{}','{}'", parentPath, a, b)
+            : fmt::format("{}/Pair[{}]", parentPath, scene_.interactions.pairs.size() + 1);
+    Children c(cx_, node, path);
+    c.fields(fieldsOf<PairDesc>(), pair);
+    c.fields(fieldsOf<InteractionDesc>(), pair.interaction);
+    runWithFunction(c, pair.interaction);
+    pairSources_.push_back({c.lineOf("A"), c.lineOf("B"), path});
+    scene_.interactions.pairs.push_back(std::move(pair));
+  }
+
+  // Runs c (a FluidFluid or Pair) with the function elements added; exactly one is needed.
+  void runWithFunction(Children& c, InteractionDesc& d) {
+    std::string first;
+    addFunction<forces::Linear>(c, "Linear", d, first);
+    addFunction<forces::LennardJones>(c, "LennardJones", d, first);
+    addFunction<forces::LennardJonesForce>(c, "LennardJonesForce", d, first);
+    addFunction<forces::Curve>(c, "Curve", d, first);
+    c.run();
+    if (first.empty()) {
+      cx_.fail(c.line(), c.path(), "missing the function element", std::string(kOneFunction));
+    }
+  }
+
+  template <class F>
+  void addFunction(Children& c, std::string_view tag, InteractionDesc& d, std::string& first) {
+    c.element(tag, [this, &d, &first](pugi::xml_node n, const std::string& p) {
+      if (!first.empty()) {
+        cx_.fail(cx_.lineOf(n), p, fmt::format("a second function <{}> after <{}>", n.name(), first),
+                 std::string(kOneFunction));
+      }
+      first = n.name();
+      F f{};
+      Children fc(cx_, n, p);
+      fc.fields(fieldsOf<F>(), f);
+      fc.run();
+      checkFunction(fc, f);
+      d.function = std::move(f);
+    });
+  }
+
+  void checkFunction(const Children& c, const forces::Linear& f) const {
+    checkOrder(c, f.min, f.max, "Min", "Max");
+  }
+  void checkFunction(const Children& c, const forces::LennardJones& f) const {
+    checkOrder(c, f.min, f.max, "Min", "Max");
+  }
+  void checkFunction(const Children&, const forces::LennardJonesForce&) const {}
+  void checkFunction(const Children& c, const forces::Curve& f) const {
+    const std::string allowed = allowedText(infoOf<forces::Curve>("Points"));
+    const auto fail = [&](const std::string& problem) {
+      cx_.fail(c.lineOf("Points"), c.childPath("Points"), problem, allowed);
+    };
+    const std::vector<double>& p = f.points;
+    if (p.size() % 2 != 0 || p.size() < 4) {
+      fail(fmt::format("{} numbers do not make at least 2 (r, f) points", p.size()));
+    }
+    if (p[0] < 0) fail(fmt::format("the first r ({}) is negative", p[0]));
+    for (std::size_t i = 2; i < p.size(); i += 2) {
+      if (!(p[i] > p[i - 2])) {
+        fail(fmt::format("r {} does not increase after r {} (point {})", p[i], p[i - 2], i / 2 + 1));
+      }
+    }
+  }
+
+  void checkPairs() const {
+    std::map<std::pair<std::string, std::string>, int> seen;
+    std::string names;
+    for (const auto& f : scene_.fluids) names += (names.empty() ? "" : ", ") + f.name;
+    const std::string allowed =
+        names.empty() ? std::string("the Name of a fluid (the scene has none)")
+                      : fmt::format("the Name of a fluid: {}", names);
+    for (std::size_t i = 0; i < scene_.interactions.pairs.size(); ++i) {
+      const PairDesc& p = scene_.interactions.pairs[i];
+      const PairSource& src = pairSources_[i];
+      if (!nameLines_.contains(p.a)) {
+        cx_.fail(src.aLine, src.path + "/A", fmt::format("no fluid is named '{}'", p.a), allowed);
+      }
+      if (!nameLines_.contains(p.b)) {
+        cx_.fail(src.bLine, src.path + "/B", fmt::format("no fluid is named '{}'", p.b), allowed);
+      }
+      const auto key = std::minmax(p.a, p.b);
+      if (const auto [it, fresh] = seen.emplace(std::pair(key.first, key.second), p.line); !fresh) {
+        cx_.fail(p.line, src.path,
+                 fmt::format("the pair '{}','{}' is given twice (first at line {})", p.a, p.b,
+                             it->second),
+                 "one <Pair> for two fluids, in either order");
+      }
+    }
+  }
+
+  // The cap on particles, counted from positions and fill formulas: nothing generated.
+  void checkParticleCap() const {
+    const std::uint64_t cap = cx_.options.maxParticles;
+    std::uint64_t total = 0;
+    std::size_t crossing = scene_.fluids.size();
+    for (std::size_t i = 0; i < scene_.fluids.size(); ++i) {
+      const FluidDesc& f = scene_.fluids[i];
+      total = saturatingAdd(total, f.particles.size());
+      for (const FillDesc& fill : f.fills) total = saturatingAdd(total, fillCount(fill));
+      if (total > cap && crossing == scene_.fluids.size()) crossing = i;
+    }
+    if (crossing == scene_.fluids.size()) return;
+    const std::string count =
+        total == UINT64_MAX ? std::string("more than 18446744073709551614") : std::to_string(total);
+    cx_.fail(scene_.fluids[crossing].line, labels_[crossing],
+             fmt::format("the scene makes {} particles (explicit positions plus fills), more than "
+                         "the cap of {}",
+                         count, cap),
+             fmt::format("at most {} particles in all", cap));
+  }
+
+  const Context& cx_;
+  SceneDesc scene_;
+  std::map<std::string, int> nameLines_;  // fluid name -> line of its <Name>
+  std::vector<std::string> labels_;       // per fluid: its element path
+  std::vector<PairSource> pairSources_;   // per pair: lines of A and B, its path
+};
+
+}  // namespace
+
+SceneDesc readSceneText(std::string_view text, const std::string& fileName,
+                        const ReadOptions& options) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+  const Context cx(text, fileName, options);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+  if (!parsed) {
+    cx.fail(cx.lineAt(parsed.offset), "XML", fmt::format("not well-formed: {}", parsed.description()),
+            "well-formed XML");
+  }
+  return SceneReader(cx).read(doc);
+}
+
+SceneDesc readSceneFile(const std::string& path, const ReadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw IoError(fmt::format("cannot read scene file '{}': it is a directory", path));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw IoError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
+  }
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    throw IoError(fmt::format("cannot read scene file '{}': read error", path));
+  }
+  return readSceneText(text, path, options);
+}
+
+}  // namespace softsub::scene

@@ -1,0 +1,29 @@
+#pragma once
+/// Reading and validating .scene files (docs/scene-format.md). Every problem is an
+/// InputError naming the file, line, element, the problem and what is allowed; a
+/// SceneDesc that comes back is valid, so later stages can trust it.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "scene/scene_desc.h"
+
+namespace softsub::scene {
+
+/// Limits the reader enforces on top of the format's own rules.
+struct ReadOptions {
+  /// Most particles a scene may make (explicit positions plus fills, counted without
+  /// generating anything); a bigger scene is refused before anything is allocated.
+  std::uint64_t maxParticles = 20'000'000;
+};
+
+/// Reads and validates the scene file at path. Throws IoError if it cannot be read,
+/// InputError if it is not a valid scene.
+SceneDesc readSceneFile(const std::string& path, const ReadOptions& options = {});
+
+/// Reads and validates scene text; fileName is only used in messages.
+/// Throws InputError if it is not a valid scene.
+SceneDesc readSceneText(std::string_view text, const std::string& fileName,
+                        const ReadOptions& options = {});
+
+}  // namespace softsub::scene
