@@ -1,1 +1,85 @@
-int main() { return 0; }
+// softsub: the command line. Parses, dispatches to one command, and maps every error
+// to its exit code (core/error.h, docs/cli.md) in this one place.
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cmd_info.h"
+#include "cmd_run.h"
+#include "cmd_schema.h"
+#include "core/error.h"
+#include "seed_flags.h"
+
+namespace {
+
+using softsub::ExitCode;
+
+int code(ExitCode c) { return static_cast<int>(c); }
+
+void printError(const std::string& message) { fmt::print(stderr, "error: {}\n", message); }
+
+int runApp(int argc, char** argv) {
+  namespace app = softsub::app;
+  CLI::App root{"softsub: soft and viscous substances from particles, simulated into frame caches"};
+  root.set_version_flag("--version", std::string("softsub ") + SOFTSUB_VERSION);
+  root.require_subcommand(1);
+  root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
+              "-updateNum, -stopRecordingAt, -drawPerFrame) imply 'run'.");
+
+  app::RunOptions runOptions;
+  app::InfoOptions infoOptions;
+  CLI::App* run = app::addRunCommand(root, runOptions);
+  CLI::App* info = app::addInfoCommand(root, infoOptions);
+  CLI::App* schema = app::addSchemaCommand(root);
+
+  const std::vector<std::string> given(argv, argv + argc);
+  const std::vector<std::string> args = app::rewriteSeedFlags(given);
+  std::vector<const char*> argvOut;
+  for (const std::string& a : args) argvOut.push_back(a.c_str());
+  try {
+    root.parse(static_cast<int>(argvOut.size()), argvOut.data());
+  } catch (const CLI::CallForHelp& e) {
+    return root.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return root.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return root.exit(e);
+  } catch (const CLI::ParseError& e) {
+    printError(e.what());
+    fmt::print(stderr, "Run 'softsub --help' or 'softsub COMMAND --help' for usage.\n");
+    return code(ExitCode::BadInput);
+  }
+
+  if (run->parsed()) return app::runCommand(runOptions);
+  if (info->parsed()) return app::infoCommand(infoOptions);
+  if (schema->parsed()) return app::schemaCommand();
+  return code(ExitCode::BadInput);  // unreachable: a subcommand is required
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return runApp(argc, argv);
+  } catch (const softsub::InputError& e) {
+    printError(e.what());
+    return code(ExitCode::BadInput);
+  } catch (const softsub::IoError& e) {
+    printError(e.what());
+    return code(ExitCode::IoFailure);
+  } catch (const softsub::BlowUpError& e) {
+    printError(std::string("simulation blew up: ") + e.what());
+    return code(ExitCode::BlowUp);
+  } catch (const std::bad_alloc&) {
+    printError("out of memory");
+    return code(ExitCode::Internal);
+  } catch (const std::exception& e) {
+    printError(std::string("internal error: ") + e.what());
+    return code(ExitCode::Internal);
+  }
+}

@@ -5,62 +5,112 @@
 
 namespace softsub::fluid {
 
-void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
-                          ParticleStore& s) {
-  const std::size_t m = table.materials();
-  const forces::PairEntry* entries = table.entries().data();
-  const float* samples = table.samples().data();
-  const float* px = s.px.data();
-  const float* py = s.py.data();
-  const float* pz = s.pz.data();
-  const float* vx = s.vx.data();
-  const float* vy = s.vy.data();
-  const float* vz = s.vz.data();
-  float* fx = s.fx.data();
-  float* fy = s.fy.data();
-  float* fz = s.fz.data();
-  const std::uint16_t* mat = s.material.data();
+namespace {
 
-  // One pair: the whole interaction model in one place.
-  auto pair = [&](std::uint32_t i, std::uint32_t j, const forces::PairEntry* row, float xi, float yi,
-                  float zi, float uxi, float uyi, float uzi, float& ax, float& ay, float& az) {
-    const float dx = px[j] - xi, dy = py[j] - yi, dz = pz[j] - zi;
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    const forces::PairEntry& e = row[mat[j]];
-    if (!(r2 < e.cutoff2)) return;
+// Why two passes: most candidates from a cell stencil are out of range. The first
+// pass computes squared distances over a contiguous slot range (a plain loop the
+// compiler vectorises), the second keeps the in-range ones, and only those pay for
+// the sqrt, the table lookup and the scatter to j.
+constexpr std::uint32_t kChunk = 256;
+
+struct Scratch {
+  float r2[kChunk];
+  std::uint32_t j[kChunk];
+  float r2Kept[kChunk];
+};
+
+struct Arrays {
+  const float* __restrict px;
+  const float* __restrict py;
+  const float* __restrict pz;
+  const float* __restrict vx;
+  const float* __restrict vy;
+  const float* __restrict vz;
+  float* __restrict fx;
+  float* __restrict fy;
+  float* __restrict fz;
+  const std::uint16_t* __restrict mat;
+  const float* __restrict samples;
+};
+
+// Pass 1 + 2 on slots [b, b + len), len <= kChunk: returns the kept count.
+inline std::uint32_t filter(const Arrays& a, Scratch& sc, std::uint32_t b, std::uint32_t len, float xi,
+                            float yi, float zi, float cut2) {
+  const float* __restrict px = a.px + b;
+  const float* __restrict py = a.py + b;
+  const float* __restrict pz = a.pz + b;
+  float* __restrict r2 = sc.r2;
+  for (std::uint32_t k = 0; k < len; ++k) {
+    const float dx = px[k] - xi, dy = py[k] - yi, dz = pz[k] - zi;
+    r2[k] = dx * dx + dy * dy + dz * dz;
+  }
+  std::uint32_t n = 0;
+  for (std::uint32_t k = 0; k < len; ++k) {
+    sc.j[n] = b + k;
+    sc.r2Kept[n] = r2[k];
+    n += r2[k] < cut2 ? 1u : 0u;
+  }
+  return n;
+}
+
+// The whole interaction model, one formula for every pair kind.
+inline void interact(const Arrays& a, const Scratch& sc, std::uint32_t n, const forces::PairEntry* row,
+                     float xi, float yi, float zi, float uxi, float uyi, float uzi, float& ax, float& ay,
+                     float& az) {
+  for (std::uint32_t q = 0; q < n; ++q) {
+    const std::uint32_t j = sc.j[q];
+    const float r2 = sc.r2Kept[q];
+    const forces::PairEntry& e = row[a.mat[j]];
+    if (!(r2 < e.cutoff2)) continue;  // only with mixed cutoffs in one row
     const float r = std::sqrt(r2);
     // Coincident particles have no direction: only the velocity terms act.
     const float inv = r > 0 ? 1.0f / r : 0.0f;
     const float t = r * e.invDr;
     const std::uint32_t k = std::min(static_cast<std::uint32_t>(t), e.lastPiece);
-    const float* piece = samples + e.offset + 2 * k;
+    const float* piece = a.samples + e.offset + 2 * k;
     const float f = piece[0] + piece[1] * (t - static_cast<float>(k));
-    const float nx = dx * inv, ny = dy * inv, nz = dz * inv;
-    const float dvx = vx[j] - uxi, dvy = vy[j] - uyi, dvz = vz[j] - uzi;
+    const float nx = (a.px[j] - xi) * inv, ny = (a.py[j] - yi) * inv, nz = (a.pz[j] - zi) * inv;
+    const float dvx = a.vx[j] - uxi, dvy = a.vy[j] - uyi, dvz = a.vz[j] - uzi;
     const float vn = dvx * nx + dvy * ny + dvz * nz;
     const float along = -f + e.relativeVelocity * vn;
     const float gx = along * nx + e.damping * dvx;
     const float gy = along * ny + e.damping * dvy;
     const float gz = along * nz + e.damping * dvz;
     ax += gx; ay += gy; az += gz;
-    fx[j] -= gx; fy[j] -= gy; fz[j] -= gz;
-    (void)i;
-  };
+    a.fx[j] -= gx; a.fy[j] -= gy; a.fz[j] -= gz;
+  }
+}
+
+}  // namespace
+
+void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+                          ParticleStore& s) {
+  const std::size_t m = table.materials();
+  const forces::PairEntry* entries = table.entries().data();
+  const Arrays a{s.px.data(), s.py.data(), s.pz.data(), s.vx.data(), s.vy.data(), s.vz.data(),
+                 s.fx.data(), s.fy.data(), s.fz.data(), s.material.data(), table.samples().data()};
+  Scratch sc;
 
   const std::size_t cells = grid.cellCount();
   for (std::size_t c = 0; c < cells; ++c) {
     const neighbors::SlotRange own = grid.cell(c);
     const auto forward = grid.forwardRanges(c);
     for (std::uint32_t i = own.begin; i < own.end; ++i) {
-      const forces::PairEntry* row = entries + mat[i] * m;
-      const float xi = px[i], yi = py[i], zi = pz[i];
-      const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
+      const forces::PairEntry* row = entries + a.mat[i] * m;
+      const float cut2 = table.rowCutoff2(a.mat[i]);
+      const float xi = a.px[i], yi = a.py[i], zi = a.pz[i];
+      const float uxi = a.vx[i], uyi = a.vy[i], uzi = a.vz[i];
       float ax = 0, ay = 0, az = 0;
-      for (std::uint32_t j = i + 1; j < own.end; ++j) pair(i, j, row, xi, yi, zi, uxi, uyi, uzi, ax, ay, az);
-      for (const neighbors::SlotRange& r : forward)
-        for (std::uint32_t j = r.begin; j < r.end; ++j)
-          pair(i, j, row, xi, yi, zi, uxi, uyi, uzi, ax, ay, az);
-      fx[i] += ax; fy[i] += ay; fz[i] += az;
+      auto range = [&](std::uint32_t b, std::uint32_t e) {
+        for (; b < e; b += kChunk) {
+          const std::uint32_t len = std::min(kChunk, e - b);
+          const std::uint32_t n = filter(a, sc, b, len, xi, yi, zi, cut2);
+          interact(a, sc, n, row, xi, yi, zi, uxi, uyi, uzi, ax, ay, az);
+        }
+      };
+      range(i + 1, own.end);
+      for (const neighbors::SlotRange& r : forward) range(r.begin, r.end);
+      a.fx[i] += ax; a.fy[i] += ay; a.fz[i] += az;
     }
   }
 }

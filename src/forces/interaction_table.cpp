@@ -39,7 +39,8 @@ InteractionTable::InteractionTable(std::size_t materials, int intervals)
     : materials_(materials),
       intervals_(intervals),
       entries_(materials * materials),
-      described_(materials * materials) {
+      described_(materials * materials),
+      rowCutoff2_(materials, 0.0f) {
   // Every pair starts as "nothing": a zero function with zero cutoff.
 }
 
@@ -67,6 +68,11 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   entries_[b * materials_ + a] = e;
   described_[a * materials_ + b] = in;
   described_[b * materials_ + a] = in;
+  for (std::size_t r = 0; r < materials_; ++r) {
+    rowCutoff2_[r] = 0;
+    for (std::size_t c = 0; c < materials_; ++c)
+      rowCutoff2_[r] = std::max(rowCutoff2_[r], entries_[r * materials_ + c].cutoff2);
+  }
 }
 
 double InteractionTable::maxCutoff() const {

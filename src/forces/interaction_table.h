@@ -75,6 +75,8 @@ class InteractionTable {
   [[nodiscard]] std::span<const PairEntry> entries() const { return entries_; }
   /// All sampled pieces; entries point into this.
   [[nodiscard]] std::span<const float> samples() const { return samples_; }
+  /// Squared longest cutoff of material a with any material (kernel pre-filter).
+  [[nodiscard]] float rowCutoff2(std::size_t a) const { return rowCutoff2_[a]; }
   /// The longest cutoff of any pair: the neighbour grid's cell size.
   [[nodiscard]] double maxCutoff() const;
   /// The sampled function of (a, b) evaluated at r, as the kernel does.
@@ -88,6 +90,7 @@ class InteractionTable {
   std::vector<PairEntry> entries_;
   std::vector<Interaction> described_;
   std::vector<float> samples_;
+  std::vector<float> rowCutoff2_;
   std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
 };
 

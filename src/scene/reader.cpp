@@ -3,9 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +18,7 @@
 #include "core/error.h"
 #include "scene/fill.h"
 #include "scene/schema.h"
+#include "scene/value_text.h"
 
 namespace softsub::scene {
 
@@ -31,105 +30,6 @@ constexpr std::string_view kMeshRefused =
     "mesh fills need mesh loading, which arrives with issue #3";
 constexpr std::string_view kOneFunction =
     "exactly one of Linear, LennardJones, LennardJonesForce, Curve";
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
-  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> splitTokens(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && isSpace(s[i])) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !isSpace(s[i])) ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
-// A token for a message: quoted, and cut short when long.
-std::string shown(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  if (s.size() > kMax) return fmt::format("'{}...'", s.substr(0, kMax));
-  return fmt::format("'{}'", s);
-}
-
-// Parses one finite number; returns the problem, or "" when fine.
-std::string parseReal(std::string_view token, double& out) {
-  std::string_view t = token;
-  if (t.size() > 1 && t[0] == '+' && t[1] != '+' && t[1] != '-') t.remove_prefix(1);
-  const char* end = t.data() + t.size();
-  const auto [ptr, ec] = std::from_chars(t.data(), end, out);
-  if (ec == std::errc::result_out_of_range) {
-    return fmt::format("{} is beyond the range of numbers", shown(token));
-  }
-  if (ec != std::errc{} || ptr != end) return fmt::format("{} is not a number", shown(token));
-  if (!std::isfinite(out)) return fmt::format("{} is not a finite number", shown(token));
-  return {};
-}
-
-// Parses one integer; returns the problem, or "" when fine.
-std::string parseInt(std::string_view token, std::int64_t& out) {
-  std::string_view t = token;
-  if (t.size() > 1 && t[0] == '+' && t[1] != '+' && t[1] != '-') t.remove_prefix(1);
-  const char* end = t.data() + t.size();
-  const auto [ptr, ec] = std::from_chars(t.data(), end, out);
-  if (ec == std::errc::result_out_of_range) {
-    return fmt::format("{} is beyond the range of integers", shown(token));
-  }
-  if (ec != std::errc{} || ptr != end) {
-    double d = 0;
-    if (parseReal(token, d).empty()) return fmt::format("{} is not an integer", shown(token));
-    return fmt::format("{} is not a number", shown(token));
-  }
-  return {};
-}
-
-std::size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0U : 1U)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-bool equalIgnoringCase(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-// " (did you mean X?)" for a near miss among the candidates, else "".
-std::string suggestion(std::string_view name, const std::vector<std::string_view>& candidates) {
-  for (const auto c : candidates) {
-    if (equalIgnoringCase(name, c)) {
-      return fmt::format(" (did you mean <{}>? element names are case-sensitive)", c);
-    }
-  }
-  std::string_view best;
-  std::size_t bestDistance = 3;
-  for (const auto c : candidates) {
-    const std::size_t d = editDistance(name, c);
-    if (d < bestDistance && d < c.size()) {
-      best = c;
-      bestDistance = d;
-    }
-  }
-  return best.empty() ? std::string() : fmt::format(" (did you mean <{}>?)", best);
-}
 
 bool isNameChar(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
@@ -201,98 +101,13 @@ std::string leafText(const Context& cx, pugi::xml_node node, const std::string& 
 }
 
 // Parses a value element by its field's kind, checking every number and rule of the kind.
-class ValueParser {
- public:
-  ValueParser(const Context& cx, pugi::xml_node node, const std::string& path, const FieldInfo& f)
-      : cx_(cx), node_(node), path_(path), f_(f), text_(leafText(cx, node, path)),
-        tokens_(splitTokens(text_)) {}
-
-  Value parse() const {
-    switch (f_.kind) {
-      case Kind::Real: return number(single());
-      case Kind::Int: return integer(single());
-      case Kind::Bool: return boolean(single());
-      case Kind::Vec3:
-      case Kind::Colour:
-        if (tokens_.size() != 3) bad(fmt::format("expected 3 numbers, got {}", tokens_.size()));
-        return Vec3(number(tokens_[0]), number(tokens_[1]), number(tokens_[2]));
-      case Kind::String:
-        if (trim(text_).empty()) bad("the value is empty");
-        return std::string(trim(text_));
-      case Kind::Enum: return choice(single());
-      case Kind::RealList: {
-        std::vector<double> list;
-        list.reserve(tokens_.size());
-        for (const auto t : tokens_) list.push_back(number(t));
-        return list;
-      }
-      case Kind::PointList: {
-        if (tokens_.size() % 3 != 0) {
-          bad(fmt::format("{} numbers do not make whole positions (3 numbers each)",
-                          tokens_.size()));
-        }
-        std::vector<Vec3> points;
-        points.reserve(tokens_.size() / 3);
-        for (std::size_t i = 0; i < tokens_.size(); i += 3) {
-          points.emplace_back(number(tokens_[i]), number(tokens_[i + 1]), number(tokens_[i + 2]));
-        }
-        return points;
-      }
-    }
-    bad("unsupported value kind");
-  }
-
- private:
-  [[noreturn]] void bad(const std::string& problem) const {
-    cx_.fail(cx_.lineOf(node_), path_, problem, allowedText(f_));
-  }
-
-  [[nodiscard]] std::string_view single() const {
-    if (tokens_.empty()) bad("the value is empty");
-    if (tokens_.size() > 1) {
-      bad(fmt::format("expected one value, got {}: {}", tokens_.size(), shown(trim(text_))));
-    }
-    return tokens_[0];
-  }
-
-  [[nodiscard]] double number(std::string_view token) const {
-    double v = 0;
-    if (auto problem = parseReal(token, v); !problem.empty()) bad(problem);
-    if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token));
-    return v;
-  }
-
-  [[nodiscard]] std::int64_t integer(std::string_view token) const {
-    std::int64_t v = 0;
-    if (auto problem = parseInt(token, v); !problem.empty()) bad(problem);
-    if (!f_.range.contains(static_cast<double>(v))) bad(fmt::format("{} is out of range", v));
-    return v;
-  }
-
-  [[nodiscard]] bool boolean(std::string_view token) const {
-    if (token == "true" || token == "1") return true;
-    if (token == "false" || token == "0") return false;
-    bad(fmt::format("{} is not a boolean", shown(token)));
-  }
-
-  [[nodiscard]] std::int64_t choice(std::string_view token) const {
-    for (std::size_t i = 0; i < f_.choices.size(); ++i) {
-      if (f_.choices[i] == token) return static_cast<std::int64_t>(i);
-    }
-    bad(fmt::format("{} is not one of the choices", shown(token)));
-  }
-
-  const Context& cx_;
-  pugi::xml_node node_;
-  const std::string& path_;
-  const FieldInfo& f_;
-  std::string text_;
-  std::vector<std::string_view> tokens_;
-};
-
 Value parseValue(const Context& cx, pugi::xml_node node, const std::string& path,
                  const FieldInfo& f) {
-  return ValueParser(cx, node, path, f).parse();
+  Value v;
+  if (auto problem = parseValueText(f, leafText(cx, node, path), v); !problem.empty()) {
+    cx.fail(cx.lineOf(node), path, std::move(problem), allowedText(f));
+  }
+  return v;
 }
 
 // The child elements one element accepts, dispatched in document order. Rejects
@@ -341,11 +156,11 @@ class Children {
   void run() {
     for (const pugi::xml_node child : parent_.children()) {
       if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
-        const std::string_view text = trim(child.value());
+        const std::string_view text = trimSpace(child.value());
         if (!text.empty()) {
           const int line = cx_.lineOf(child);
           cx_.fail(line > 0 ? line : cx_.lineOf(parent_), selfPath(),
-                   fmt::format("unexpected text {}", shown(text)),
+                   fmt::format("unexpected text {}", quote(text)),
                    fmt::format("child elements only: {}", acceptedList()));
         }
         continue;
@@ -429,7 +244,7 @@ class Children {
     const Entry* e = find(name);
     if (e == nullptr) {
       cx_.fail(line, path,
-               fmt::format("unknown element <{}>{}", name, suggestion(name, acceptedTags())),
+               fmt::format("unknown element <{}>{}", name, nearMiss(name, acceptedTags())),
                fmt::format("in <{}>: {}", parent_.name(), acceptedList()));
     }
     if (!e->refusal.empty()) {
@@ -453,7 +268,7 @@ class Children {
 
 // The first child element named tag, trimmed text; "" when absent.
 std::string childText(pugi::xml_node node, const char* tag) {
-  return std::string(trim(node.child(tag).child_value()));
+  return std::string(trimSpace(node.child(tag).child_value()));
 }
 
 }  // namespace
@@ -499,7 +314,7 @@ class SceneReader {
   pugi::xml_node findRoot(const pugi::xml_document& doc) const {
     pugi::xml_node root;
     for (const pugi::xml_node n : doc.children()) {
-      if (n.type() == pugi::node_pcdata && !trim(n.value()).empty()) {
+      if (n.type() == pugi::node_pcdata && !trimSpace(n.value()).empty()) {
         cx_.fail(cx_.lineOf(n), "Scene", "text outside the root element", "one <Scene> element");
       }
       if (n.type() != pugi::node_element) continue;
@@ -513,7 +328,7 @@ class SceneReader {
     if (std::string_view(root.name()) != "Scene") {
       cx_.fail(cx_.lineOf(root), root.name(),
                fmt::format("the root element is <{}>{}", root.name(),
-                           suggestion(root.name(), {"Scene"})),
+                           nearMiss(root.name(), {"Scene"})),
                "<Scene version=\"1\">");
     }
     return root;
@@ -527,7 +342,7 @@ class SceneReader {
       }
       if (std::string_view(a.value()) != "1") {
         cx_.fail(cx_.lineOf(root), "Scene",
-                 fmt::format("unsupported format version {}", shown(a.value())), "version=\"1\"");
+                 fmt::format("unsupported format version {}", quote(a.value())), "version=\"1\"");
       }
     }
   }
@@ -563,7 +378,7 @@ class SceneReader {
 
     if (!validName(fluid.name)) {
       cx_.fail(c.lineOf("Name"), label + "/Name",
-               fmt::format("{} is not a valid fluid name", shown(fluid.name)),
+               fmt::format("{} is not a valid fluid name", quote(fluid.name)),
                allowedText(infoOf<FluidDesc>("Name")));
     }
     if (const auto [it, fresh] = nameLines_.emplace(fluid.name, c.lineOf("Name")); !fresh) {

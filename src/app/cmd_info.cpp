@@ -1,0 +1,40 @@
+#include "cmd_info.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include <CLI/CLI.hpp>
+
+#include "core/error.h"
+
+namespace softsub::app {
+
+CLI::App* addInfoCommand(CLI::App& root, InfoOptions& o) {
+  CLI::App* info = root.add_subcommand("info", "Summarise a .scene, .sim, .pdc or .ply file");
+  info->add_option("file", o.file, "The file (its extension says what it is)")->required();
+  return info;
+}
+
+int infoCommand(const InfoOptions& o) {
+  std::string ext = std::filesystem::path(o.file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".scene") {
+    printSceneInfo(o.file);
+  } else if (ext == ".sim") {
+    printSimInfo(o.file);
+  } else if (ext == ".pdc") {
+    printPdcInfo(o.file);
+  } else if (ext == ".ply") {
+    printPlyInfo(o.file);
+  } else {
+    throw InputError({o.file, 0, {}},
+                     ext.empty() ? std::string("no file extension")
+                                 : "unknown file extension '" + ext + "'",
+                     ".scene, .sim, .pdc, .ply");
+  }
+  return static_cast<int>(ExitCode::Ok);
+}
+
+}  // namespace softsub::app

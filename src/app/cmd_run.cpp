@@ -1,0 +1,171 @@
+#include "cmd_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cache/frame_writer.h"
+#include "cache/naming.h"
+#include "core/error.h"
+#include "progress.h"
+#include "scene/compile.h"
+#include "scene/schema.h"
+#include "scene_source.h"
+#include "solver/frame_loop.h"
+#include "stop_signal.h"
+#include "text_format.h"
+
+namespace softsub::app {
+
+namespace {
+
+constexpr const char* kSeedGroup = "Seed flags (also accepted with one dash, as in the seed)";
+
+/// Remembers the last frame every earlier observer has finished with.
+class LastFrame : public FrameObserver {
+ public:
+  void onFrame(const FrameSnapshot& frame) override { last = frame.frame; }
+  std::int64_t last = -1;  ///< -1: none yet
+};
+
+/// The schema's declaration of a <Simulation> tag (the one source of its range).
+const scene::FieldInfo* simulationField(std::string_view tag) {
+  for (const auto& f : scene::fieldsOf<scene::SimulationDesc>())
+    if (f.tag == tag) return &f;
+  return nullptr;
+}
+
+/// Checks a command-line override against the schema's range for `tag`.
+void checkOverride(std::string_view option, std::string_view tag, std::int64_t value) {
+  const scene::FieldInfo* info = simulationField(tag);
+  if (info == nullptr || info->range.contains(static_cast<double>(value))) return;
+  throw InputError({"command line", 0, std::string(option)}, fmt::format("{} is out of range", value),
+                   scene::allowedText(*info));
+}
+
+/// Everything `run` checks before it reads the scene: the command line itself.
+cache::Formats checkCommandLine(const RunOptions& o) {
+  if (o.frames >= 0) checkOverride("--frames", "Frames", o.frames);
+  if (o.substeps >= 0) checkOverride("--substeps", "Substeps", o.substeps);
+  const cache::Formats formats = cache::parseFormats(o.formats);
+  if (o.record == 0) return {false, false, false};
+  return formats;
+}
+
+void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
+  if (o.frames >= 0) desc.simulation.frames = static_cast<int>(o.frames);
+  if (o.substeps >= 0) desc.simulation.substeps = static_cast<int>(o.substeps);
+  if (!o.integrator.empty()) {
+    const auto& names = scene::kIntegratorNames;
+    const auto it = std::find(std::begin(names), std::end(names), o.integrator);
+    desc.simulation.integrator = static_cast<scene::Integrator>(it - std::begin(names));
+  }
+}
+
+bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply; }
+
+std::string folderText(const std::filesystem::path& dir) {
+  std::string s = dir.generic_string();
+  if (s.empty()) s = ".";
+  if (s.back() != '/') s += '/';
+  return s;
+}
+
+}  // namespace
+
+CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
+  CLI::App* run = root.add_subcommand(
+      "run", "Simulate a scene into frame caches (the embedded default scene when SCENE is omitted)");
+  run->add_option("scene,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)");
+  run->add_option("--frames", o.frames, "Frames to simulate (overrides <Simulation><Frames>)");
+  run->add_option("--substeps", o.substeps,
+                  "Updates per frame (overrides <Simulation><Substeps>; seed: -updateNum N)");
+  run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
+  run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply (any of them), all or none")
+      ->capture_default_str();
+  run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
+                                                     std::end(scene::kIntegratorNames))));
+  run->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  run->add_option("--max-particles", o.maxParticles,
+                  "Refuse scenes with more particles than this (default: the reader's limit)")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--print-scene", o.printScene, "Print the embedded default scene and exit");
+  run->add_option("--record", o.record, "0: write nothing (same as --formats none); 1: write")
+      ->check(CLI::Range(0, 1))
+      ->group(kSeedGroup);
+  run->add_option("--stop-recording-at", o.stopRecordingAt,
+                  "Last frame to write; the run ends there too (-1: no limit)")
+      ->check(CLI::Range(std::int64_t{-1}, std::numeric_limits<std::int64_t>::max()))
+      ->group(kSeedGroup);
+  run->add_option("--draw-per-frame", o.drawPerFrame, "Accepted for the viewer; ignored by run")
+      ->group(kSeedGroup);
+  return run;
+}
+
+int runCommand(const RunOptions& o) {
+  if (o.printScene) {
+    std::fputs(defaultSceneText(), stdout);
+    return static_cast<int>(ExitCode::Ok);
+  }
+  // Everything is checked before any folder or file is created.
+  const cache::Formats formats = checkCommandLine(o);
+  LoadedScene loaded = loadScene(o.scene, o.maxParticles);
+  applyOverrides(o, loaded.desc);
+  if (formats.pdc)
+    for (const scene::FluidDesc& f : loaded.desc.fluids) cache::checkFileNamePart(f.name, "Fluid/Name");
+  const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
+  std::int64_t lastFrame = loaded.desc.simulation.frames;
+  if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
+
+  scene::Compiled compiled = scene::compile(loaded.desc);
+  const std::size_t particles = compiled.model.particleCount();
+  solver::Simulation sim(compiled.model, std::move(compiled.state));
+  if (!o.drawPerFrame.empty() && !o.quiet)
+    fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
+
+  cache::FrameWriter writer(outDir, loaded.name, formats);
+  LastFrame done;
+  std::vector<FrameObserver*> observers;
+  if (anyFormat(formats)) observers.push_back(&writer);
+  observers.push_back(&done);
+
+  const bool terminal = stderrIsTerminal();
+  ProgressLine progress(terminal && !o.quiet, lastFrame, particles);
+  solver::FrameLoopHooks hooks;
+  hooks.stop = &installStopHandlers();
+  hooks.recordUpTo = o.stopRecordingAt;
+  hooks.onProgress = [&](const solver::FrameProgress& p) { progress.update(p); };
+
+  const std::string where = anyFormat(formats) ? folderText(outDir) : std::string("nothing written");
+  bool complete = false;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    complete = solver::runFrames(sim, lastFrame, observers, hooks);
+  } catch (const BlowUpError& e) {
+    progress.end();
+    throw BlowUpError(done.last < 0 ? std::string(e.what())
+                                    : fmt::format("{} (frames 0..{} are complete: {})", e.what(),
+                                                  done.last, where));
+  }
+  progress.end();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!complete) {
+    fmt::print(stderr, "interrupted by {}: frame {} is the last complete frame ({})\n",
+               stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT", done.last, where);
+    return static_cast<int>(ExitCode::Interrupted);
+  }
+  if (!o.quiet)
+    fmt::print(stderr, "done: {} frames, {} particles, {:.2f} s ({:.1f} ms/frame), output: {}\n",
+               progress.framesDone(), groupThousands(particles), seconds, progress.secondsPerFrame() * 1e3,
+               where);
+  return static_cast<int>(ExitCode::Ok);
+}
+
+}  // namespace softsub::app

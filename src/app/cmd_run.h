@@ -1,0 +1,36 @@
+#pragma once
+/// `softsub run`: simulate a scene (or the embedded default scene) into frame caches.
+#include <cstdint>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace softsub::app {
+
+/// The options of `run` as given on the command line; "unset" values mean "take the
+/// scene's".
+struct RunOptions {
+  std::string scene;                  ///< .scene file; empty: the embedded default scene
+  std::int64_t frames = -1;           ///< --frames; -1: the scene's Frames
+  std::int64_t substeps = -1;         ///< --substeps / -updateNum; -1: the scene's Substeps
+  std::string out;                    ///< --out; empty: <sceneDir>/<sceneName>Sim
+  std::string formats = "all";        ///< --formats
+  std::string integrator;             ///< --integrator; empty: the scene's
+  bool quiet = false;                 ///< --quiet: nothing on stderr but errors
+  std::uint64_t maxParticles = 0;     ///< --max-particles; 0: the reader's default limit
+  bool printScene = false;            ///< --print-scene: print the default scene and exit
+  int record = -1;                    ///< -record 0|1; 0 means --formats none
+  std::int64_t stopRecordingAt = -1;  ///< -stopRecordingAt F; -1: no limit
+  std::string drawPerFrame;           ///< -drawPerFrame X; accepted and ignored (viewer)
+};
+
+/// Adds the `run` subcommand bound to `options` and returns it.
+CLI::App* addRunCommand(CLI::App& root, RunOptions& options);
+
+/// Runs it. Returns the exit code (0, or 130 when interrupted); throws InputError,
+/// IoError or BlowUpError on failure.
+int runCommand(const RunOptions& options);
+
+}  // namespace softsub::app

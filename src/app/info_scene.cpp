@@ -1,0 +1,81 @@
+// `softsub info FILE.scene`: what a scene holds, as the solver will see it.
+#include <variant>
+
+#include <fmt/format.h>
+
+#include "cmd_info.h"
+#include "core/aabb.h"
+#include "scene/compile.h"
+#include "scene/schema.h"
+#include "scene_source.h"
+#include "text_format.h"
+
+namespace softsub::app {
+
+namespace {
+
+/// "Tag value, Tag value, ..." for every field of `s` the schema declares (long point
+/// lists and the fields in `skip` left out).
+template <class S>
+std::string describeFields(const S& s, std::initializer_list<std::string_view> skip = {}) {
+  std::string out;
+  for (const auto& f : scene::fieldsOf<S>()) {
+    if (f.kind == scene::Kind::PointList) continue;
+    if (std::find(skip.begin(), skip.end(), f.tag) != skip.end()) continue;
+    if (!out.empty()) out += ", ";
+    out += fmt::format("{} {}", f.tag, scene::formatValue(f, f.get(s)));
+  }
+  return out;
+}
+
+std::string describeInteraction(const scene::InteractionDesc& d) {
+  const std::string function = std::visit(
+      [](const auto& fn) { return fmt::format("{} ({})", forces::kindName(fn), describeFields(fn)); },
+      d.function);
+  return fmt::format("{}; {}", function, describeFields(d));
+}
+
+std::string vec(const Vec3& v) { return fmt::format("{:g} {:g} {:g}", v.x(), v.y(), v.z()); }
+
+}  // namespace
+
+void printSceneInfo(const std::string& path) {
+  const LoadedScene loaded = loadScene(path, 0);
+  const scene::SceneDesc& d = loaded.desc;
+  const scene::Compiled compiled = scene::compile(d);
+  const auto& sim = d.simulation;
+  fmt::print("scene {}: {}\n", loaded.name, path);
+  fmt::print("simulation: {} frames at {:g} fps ({:g} s), {} substeps (dt {:.4g} s), {}, gravity {}\n",
+             sim.frames, sim.framesPerSecond, sim.frames / sim.framesPerSecond, sim.substeps,
+             compiled.model.dt(), scene::kIntegratorNames[static_cast<std::size_t>(sim.integrator)],
+             vec(sim.gravity));
+  if (d.environment) {
+    const auto& e = *d.environment;
+    fmt::print("environment: box x [{:g}, {:g}]  y [0, {:g}]  z [{:g}, {:g}], {} top; {}\n", -e.width / 2,
+               e.width / 2, e.height, -e.depth / 2, e.depth / 2, e.closed ? "closed" : "open",
+               describeFields(e));
+  } else {
+    fmt::print("environment: none (no walls, no floor)\n");
+  }
+
+  const ParticleStore& store = compiled.state.particles;
+  std::vector<Aabb> boxes(d.fluids.size());
+  for (std::size_t k = 0; k < store.size(); ++k) boxes[store.owner[k]].add(store.px[k], store.py[k], store.pz[k]);
+  fmt::print("fluids: {}, {} particles in all\n", d.fluids.size(),
+             groupThousands(compiled.model.particleCount()));
+  for (std::size_t f = 0; f < d.fluids.size(); ++f) {
+    const scene::FluidDesc& fluid = d.fluids[f];
+    fmt::print("  {}: {} particles ({} explicit, {} fills), bounds {}\n", fluid.name,
+               groupThousands(compiled.model.fluids[f].count), fluid.particles.size(), fluid.fills.size(),
+               describeBox(boxes[f]));
+    fmt::print("    {}\n", describeFields(fluid, {"Name", "NumberOfParticles"}));
+  }
+
+  fmt::print("interactions:\n");
+  fmt::print("  fluid/fluid (different fluids): {}\n", describeInteraction(d.interactions.fluidFluid));
+  for (const scene::PairDesc& p : d.interactions.pairs)
+    fmt::print("  pair {} / {}: {}\n", p.a, p.b, describeInteraction(p.interaction));
+  if (d.interactions.pairs.empty()) fmt::print("  no pair overrides\n");
+}
+
+}  // namespace softsub::app
