@@ -2,21 +2,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace softsub::fluid {
 
 namespace {
 
-// Why two passes: most candidates from a cell stencil are out of range. The first
-// pass computes squared distances over a contiguous slot range (a plain loop the
-// compiler vectorises), the second keeps the in-range ones, and only those pay for
-// the sqrt, the table lookup and the scatter to j.
-constexpr std::uint32_t kChunk = 256;
-
-struct Scratch {
-  float r2[kChunk];
-  std::uint32_t j[kChunk];
-  float r2Kept[kChunk];
+// Why this shape: most candidates of a cell stencil are out of range, and the ranges
+// of one cell's neighbours are short. So per cell the candidate particles (own cell
+// first, then the forward neighbour cells) are copied once into a contiguous buffer;
+// per particle, one long loop computes squared distances over it (vectorised), a
+// compaction keeps the in-range ones, and only those pay for the sqrt, the table
+// lookup and the scatter to j.
+struct CellScratch {
+  std::vector<float> x, y, z, r2, r2Kept;
+  std::vector<std::uint32_t> slot, kept;
+  void resize(std::size_t n) {
+    if (x.size() >= n) return;
+    for (auto* v : {&x, &y, &z, &r2, &r2Kept}) v->resize(n);
+    slot.resize(n);
+    kept.resize(n);
+  }
 };
 
 struct Arrays {
@@ -33,33 +39,38 @@ struct Arrays {
   const float* __restrict samples;
 };
 
-// Pass 1 + 2 on slots [b, b + len), len <= kChunk: returns the kept count.
-inline std::uint32_t filter(const Arrays& a, Scratch& sc, std::uint32_t b, std::uint32_t len, float xi,
-                            float yi, float zi, float cut2) {
-  const float* __restrict px = a.px + b;
-  const float* __restrict py = a.py + b;
-  const float* __restrict pz = a.pz + b;
-  float* __restrict r2 = sc.r2;
-  for (std::uint32_t k = 0; k < len; ++k) {
-    const float dx = px[k] - xi, dy = py[k] - yi, dz = pz[k] - zi;
+// Squared distances from (xi, yi, zi) to buffer entries [from, len), kept if < cut2.
+inline std::uint32_t filter(CellScratch& sc, std::uint32_t from, std::uint32_t len, float xi, float yi,
+                            float zi, float cut2) {
+  const float* __restrict bx = sc.x.data();
+  const float* __restrict by = sc.y.data();
+  const float* __restrict bz = sc.z.data();
+  float* __restrict r2 = sc.r2.data();
+  for (std::uint32_t k = from; k < len; ++k) {
+    const float dx = bx[k] - xi, dy = by[k] - yi, dz = bz[k] - zi;
     r2[k] = dx * dx + dy * dy + dz * dz;
   }
+  std::uint32_t* __restrict kept = sc.kept.data();
+  float* __restrict r2Kept = sc.r2Kept.data();
+  const std::uint32_t* __restrict slot = sc.slot.data();
   std::uint32_t n = 0;
-  for (std::uint32_t k = 0; k < len; ++k) {
-    sc.j[n] = b + k;
-    sc.r2Kept[n] = r2[k];
+  for (std::uint32_t k = from; k < len; ++k) {
+    kept[n] = slot[k];
+    r2Kept[n] = r2[k];
     n += r2[k] < cut2 ? 1u : 0u;
   }
   return n;
 }
 
 // The whole interaction model, one formula for every pair kind.
-inline void interact(const Arrays& a, const Scratch& sc, std::uint32_t n, const forces::PairEntry* row,
+inline void interact(const Arrays& a, const CellScratch& sc, std::uint32_t n, const forces::PairEntry* row,
                      float xi, float yi, float zi, float uxi, float uyi, float uzi, float& ax, float& ay,
                      float& az) {
+  const std::uint32_t* __restrict kept = sc.kept.data();
+  const float* __restrict r2Kept = sc.r2Kept.data();
   for (std::uint32_t q = 0; q < n; ++q) {
-    const std::uint32_t j = sc.j[q];
-    const float r2 = sc.r2Kept[q];
+    const std::uint32_t j = kept[q];
+    const float r2 = r2Kept[q];
     const forces::PairEntry& e = row[a.mat[j]];
     if (!(r2 < e.cutoff2)) continue;  // only with mixed cutoffs in one row
     const float r = std::sqrt(r2);
@@ -89,27 +100,32 @@ void accumulatePairForces(const neighbors::CellGrid& grid, const forces::Interac
   const forces::PairEntry* entries = table.entries().data();
   const Arrays a{s.px.data(), s.py.data(), s.pz.data(), s.vx.data(), s.vy.data(), s.vz.data(),
                  s.fx.data(), s.fy.data(), s.fz.data(), s.material.data(), table.samples().data()};
-  Scratch sc;
+  // Reused across calls (and grown only when a denser cell neighbourhood appears).
+  static thread_local CellScratch sc;
 
   const std::size_t cells = grid.cellCount();
   for (std::size_t c = 0; c < cells; ++c) {
     const neighbors::SlotRange own = grid.cell(c);
     const auto forward = grid.forwardRanges(c);
+    std::uint32_t len = own.end - own.begin;
+    for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
+    sc.resize(len);
+    std::uint32_t k = 0;
+    auto append = [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t j = b; j < e; ++j, ++k) {
+        sc.x[k] = a.px[j]; sc.y[k] = a.py[j]; sc.z[k] = a.pz[j]; sc.slot[k] = j;
+      }
+    };
+    append(own.begin, own.end);
+    for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
+
     for (std::uint32_t i = own.begin; i < own.end; ++i) {
       const forces::PairEntry* row = entries + a.mat[i] * m;
-      const float cut2 = table.rowCutoff2(a.mat[i]);
       const float xi = a.px[i], yi = a.py[i], zi = a.pz[i];
-      const float uxi = a.vx[i], uyi = a.vy[i], uzi = a.vz[i];
+      // Own-cell partners after i, then every forward cell: each pair once.
+      const std::uint32_t n = filter(sc, i - own.begin + 1, len, xi, yi, zi, table.rowCutoff2(a.mat[i]));
       float ax = 0, ay = 0, az = 0;
-      auto range = [&](std::uint32_t b, std::uint32_t e) {
-        for (; b < e; b += kChunk) {
-          const std::uint32_t len = std::min(kChunk, e - b);
-          const std::uint32_t n = filter(a, sc, b, len, xi, yi, zi, cut2);
-          interact(a, sc, n, row, xi, yi, zi, uxi, uyi, uzi, ax, ay, az);
-        }
-      };
-      range(i + 1, own.end);
-      for (const neighbors::SlotRange& r : forward) range(r.begin, r.end);
+      interact(a, sc, n, row, xi, yi, zi, a.vx[i], a.vy[i], a.vz[i], ax, ay, az);
       a.fx[i] += ax; a.fy[i] += ay; a.fz[i] += az;
     }
   }
