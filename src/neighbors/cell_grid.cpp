@@ -63,32 +63,46 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
   buildCells();
   buildHash();
 
-  // Forward neighbour ranges of every cell.
+  // Forward neighbour ranges of every cell. The 13 forward cells lie in 5 rows of
+  // constant (y, z); since cells are sorted by (z, y, x) and each row's target keys grow
+  // with c, one cursor per row walks the sorted cell keys (amortised O(1) per lookup).
+  // Offsets that wrap around the 21-bit torus use the hash table instead.
   const std::size_t cells = cellCount();
   rangeStart_.resize(cells + 1);
   ranges_.clear();
   std::array<std::uint32_t, 13> found{};
+  std::array<std::size_t, 13> cursor{};
+  const std::uint64_t* keys = cellKey_.data();
   for (std::size_t c = 0; c < cells; ++c) {
     rangeStart_[c] = static_cast<std::uint32_t>(ranges_.size());
-    const std::uint64_t k = cellKey_[c];
+    const std::uint64_t k = keys[c];
     const std::uint64_t x = k & kMask, y = (k >> kBits) & kMask, z = k >> (2 * kBits);
     std::size_t nf = 0;
-    for (const auto& o : kForward) {
-      const std::uint64_t nk = pack((x + static_cast<std::uint64_t>(o[2])) & kMask,
-                                    (y + static_cast<std::uint64_t>(o[1])) & kMask,
-                                    (z + static_cast<std::uint64_t>(o[0])) & kMask);
-      const std::int64_t cell = findCell(nk);
-      // A wrapped offset can land on the cell itself only in a degenerate 1-cell torus,
-      // which 21 bits rule out; the check keeps the invariant explicit.
-      if (cell >= 0 && static_cast<std::size_t>(cell) != c)
-        found[nf++] = static_cast<std::uint32_t>(cell);
+    for (std::size_t o = 0; o < kForward.size(); ++o) {
+      const auto& off = kForward[o];
+      const std::uint64_t nx = x + static_cast<std::uint64_t>(off[2]);
+      const std::uint64_t ny = y + static_cast<std::uint64_t>(off[1]);
+      const std::uint64_t nz = z + static_cast<std::uint64_t>(off[0]);
+      const bool wraps = ((nx | ny | nz) & ~kMask) != 0;
+      const std::uint64_t nk = pack(nx & kMask, ny & kMask, nz & kMask);
+      std::int64_t cell = -1;
+      if (wraps) {
+        cell = findCell(nk);
+      } else {
+        std::size_t& cur = cursor[o];
+        if (cur > 0 && keys[cur - 1] >= nk)  // only after a wrapped stretch: re-seek
+          cur = static_cast<std::size_t>(std::lower_bound(keys, keys + cells, nk) - keys);
+        while (cur < cells && keys[cur] < nk) ++cur;
+        if (cur < cells && keys[cur] == nk) cell = static_cast<std::int64_t>(cur);
+      }
+      if (cell >= 0 && static_cast<std::size_t>(cell) != c) found[nf++] = static_cast<std::uint32_t>(cell);
     }
     // At most 13 entries: an insertion sort (cell indices are distinct: keys differ).
     for (std::size_t a = 1; a < nf; ++a)
       for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
     for (std::size_t f = 0; f < nf; ++f) {
       const SlotRange r{cellStart_[found[f]], cellStart_[found[f] + 1]};
-      if (!ranges_.empty() && ranges_.size() > rangeStart_[c] && ranges_.back().end == r.begin)
+      if (ranges_.size() > rangeStart_[c] && ranges_.back().end == r.begin)
         ranges_.back().end = r.end;
       else
         ranges_.push_back(r);
