@@ -22,7 +22,8 @@ std::string_view trim(std::string_view s) {
 }
 
 [[noreturn]] void badFormats(std::string problem) {
-  throw InputError({"command line", 0, "--formats"}, std::move(problem), std::string(kAllowedFormats));
+  throw InputError({"command line", 0, "--formats"}, std::move(problem),
+                   std::string(kAllowedFormats));
 }
 
 }  // namespace
@@ -33,8 +34,8 @@ Formats parseFormats(std::string_view list) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = list.find(',', start);
-    const std::string_view item =
-        trim(list.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    const std::string_view item = trim(list.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
     if (item == "sim") {
       f.sim = true;
     } else if (item == "pdc") {

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "cache/message.h"
 #include "core/error.h"
 
 namespace softsub::cache {
@@ -31,7 +32,7 @@ void checkFileNamePart(std::string_view name, std::string_view element) {
   for (const char c : name) {
     const auto u = static_cast<unsigned char>(c);
     if (c == '/' || c == '\\' || u < 0x20 || u == 0x7f) {
-      refuse(fmt::format("name '{}' cannot be used in a file name", name));
+      refuse(fmt::format("name '{}' cannot be used in a file name", detail::excerpt(name)));
     }
   }
 }

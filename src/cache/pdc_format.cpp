@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "cache/atomic_file.h"
+#include "cache/message.h"
 #include "core/error.h"
 
 namespace softsub::cache {
@@ -60,8 +61,8 @@ class BigEndianReader {
   [[nodiscard]] std::size_t left() const { return bytes_.size() - pos_; }
 
   [[noreturn]] void fail(std::string element, std::string problem, std::string allowed = {}) const {
-    throw InputError({file_, 0, std::move(element)},
-                     fmt::format("at byte {}: {}", pos_, problem), std::move(allowed));
+    throw InputError({file_, 0, std::move(element)}, fmt::format("at byte {}: {}", pos_, problem),
+                     std::move(allowed));
   }
 
   void need(std::uint64_t n, const std::string& element) const {
@@ -123,9 +124,9 @@ const PdcAttribute* PdcFile::find(std::string_view name) const {
 void encodePdcInto(std::string& out, const FluidSnapshot& fluid) {
   const std::size_t n = fluid.count();
   if (fluid.positions.size() != 3 * n || fluid.velocities.size() != 3 * n) {
-    throw std::invalid_argument(fmt::format(
-        "encodePdc: fluid '{}' has {} ids, {} position and {} velocity components", fluid.name, n,
-        fluid.positions.size(), fluid.velocities.size()));
+    throw std::invalid_argument(
+        fmt::format("encodePdc: fluid '{}' has {} ids, {} position and {} velocity components",
+                    fluid.name, n, fluid.positions.size(), fluid.velocities.size()));
   }
   // Maya stores the count as int32; 3 * count doubles must also fit the attribute sizes.
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
@@ -196,7 +197,8 @@ PdcFile decodePdc(std::string_view bytes, const std::string& fileName) {
   // An attribute takes at least 9 bytes (name length, one name byte, type): a declared
   // count larger than that allows is refused before anything is reserved.
   if (static_cast<std::uint64_t>(attributeCount) * 9 > r.left()) {
-    r.fail(header, fmt::format("{} attributes cannot fit in the {} bytes left", attributeCount, r.left()),
+    r.fail(header,
+           fmt::format("{} attributes cannot fit in the {} bytes left", attributeCount, r.left()),
            "a complete PDC file");
   }
   file.attributes.reserve(static_cast<std::size_t>(attributeCount));
@@ -208,8 +210,9 @@ PdcFile decodePdc(std::string_view bytes, const std::string& fileName) {
     if (nameLength <= 0) r.fail(where, fmt::format("name length {}", nameLength), "> 0");
     PdcAttribute attribute;
     attribute.name = std::string(r.bytes(static_cast<std::size_t>(nameLength), where));
-    const std::string element = fmt::format("attribute '{}'", attribute.name);
-    if (!seen.insert(attribute.name).second) r.fail(element, "attribute given twice", "unique names");
+    const std::string element = fmt::format("attribute '{}'", detail::excerpt(attribute.name));
+    if (!seen.insert(attribute.name).second)
+      r.fail(element, "attribute given twice", "unique names");
     const std::int32_t type = r.i32(element);
     if (type < 0 || type > 5) r.fail(element, fmt::format("unknown type {}", type), "0 to 5");
     attribute.type = static_cast<PdcType>(type);

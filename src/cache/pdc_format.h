@@ -23,9 +23,9 @@ enum class PdcType : std::int32_t {
 
 /// One attribute of a PDC file, values widened to double (int32 fit exactly).
 struct PdcAttribute {
-  std::string name;            ///< e.g. "position"
-  PdcType type = PdcType::Int; ///< Maya's type code
-  std::vector<double> values;  ///< 1, 3, count or 3 x count values depending on type
+  std::string name;             ///< e.g. "position"
+  PdcType type = PdcType::Int;  ///< Maya's type code
+  std::vector<double> values;   ///< 1, 3, count or 3 x count values depending on type
 };
 
 /// A decoded PDC file.

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cache/atomic_file.h"
+#include "cache/message.h"
 #include "core/error.h"
 
 namespace softsub::cache {
@@ -76,14 +77,22 @@ struct HeaderElement {
 };
 
 constexpr std::array<std::pair<std::string_view, PlyScalar>, 16> kScalarNames{{
-    {"char", PlyScalar::Int8},     {"int8", PlyScalar::Int8},
-    {"uchar", PlyScalar::UInt8},   {"uint8", PlyScalar::UInt8},
-    {"short", PlyScalar::Int16},   {"int16", PlyScalar::Int16},
-    {"ushort", PlyScalar::UInt16}, {"uint16", PlyScalar::UInt16},
-    {"int", PlyScalar::Int32},     {"int32", PlyScalar::Int32},
-    {"uint", PlyScalar::UInt32},   {"uint32", PlyScalar::UInt32},
-    {"float", PlyScalar::Float32}, {"float32", PlyScalar::Float32},
-    {"double", PlyScalar::Float64}, {"float64", PlyScalar::Float64},
+    {"char", PlyScalar::Int8},
+    {"int8", PlyScalar::Int8},
+    {"uchar", PlyScalar::UInt8},
+    {"uint8", PlyScalar::UInt8},
+    {"short", PlyScalar::Int16},
+    {"int16", PlyScalar::Int16},
+    {"ushort", PlyScalar::UInt16},
+    {"uint16", PlyScalar::UInt16},
+    {"int", PlyScalar::Int32},
+    {"int32", PlyScalar::Int32},
+    {"uint", PlyScalar::UInt32},
+    {"uint32", PlyScalar::UInt32},
+    {"float", PlyScalar::Float32},
+    {"float32", PlyScalar::Float32},
+    {"double", PlyScalar::Float64},
+    {"float64", PlyScalar::Float64},
 }};
 
 constexpr std::string_view kScalarList =
@@ -114,8 +123,10 @@ std::pair<double, double> scalarRange(PlyScalar t) {
     case PlyScalar::UInt16: return {0, 65535};
     case PlyScalar::Int32: return {-2147483648.0, 2147483647.0};
     case PlyScalar::UInt32: return {0, 4294967295.0};
-    case PlyScalar::Float32: return {-std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
-    case PlyScalar::Float64: return {-std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    case PlyScalar::Float32:
+      return {-std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+    case PlyScalar::Float64:
+      return {-std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
   }
   return {0, 0};
 }
@@ -163,8 +174,9 @@ class PlyReader {
   [[noreturn]] void failBody(const std::string& element, std::string problem,
                              std::string allowed = {}) const {
     if (format_ == Format::Ascii) {
-      const int line = 1 + static_cast<int>(std::count(bytes_.begin(),
-                                                       bytes_.begin() + static_cast<std::ptrdiff_t>(pos_), '\n'));
+      const int line =
+          1 + static_cast<int>(std::count(
+                  bytes_.begin(), bytes_.begin() + static_cast<std::ptrdiff_t>(pos_), '\n'));
       failLine(line, element, std::move(problem), std::move(allowed));
     }
     failLine(0, element, fmt::format("at byte {}: {}", pos_, problem), std::move(allowed));
@@ -187,7 +199,8 @@ class PlyReader {
     for (const auto& [name, type] : kScalarNames) {
       if (name == word) return type;
     }
-    failLine(line_, "property", fmt::format("unknown type '{}'", word), std::string(kScalarList));
+    failLine(line_, "property", fmt::format("unknown type '{}'", detail::excerpt(word)),
+             std::string(kScalarList));
   }
 
   void readComment(std::string_view text) {
@@ -214,14 +227,16 @@ class PlyReader {
   }
 
   void readHeader() {
-    if (nextLine() != "ply") failLine(1, "header", "not a PLY file (first line is not 'ply')", "ply");
+    if (nextLine() != "ply")
+      failLine(1, "header", "not a PLY file (first line is not 'ply')", "ply");
     bool haveFormat = false;
     while (true) {
       const std::string_view line = nextLine();
       const std::vector<std::string_view> w = splitWords(line);
       if (w.empty()) continue;
       if (w[0] == "end_header") {
-        if (w.size() != 1) failLine(line_, "end_header", "text after end_header", "end_header alone");
+        if (w.size() != 1)
+          failLine(line_, "end_header", "text after end_header", "end_header alone");
         break;
       }
       if (w[0] == "comment") {
@@ -232,7 +247,8 @@ class PlyReader {
         continue;
       } else if (w[0] == "format") {
         if (w.size() != 3 || w[2] != "1.0") {
-          failLine(line_, "format", fmt::format("bad format line '{}'", line), "format <kind> 1.0");
+          failLine(line_, "format", fmt::format("bad format line '{}'", detail::excerpt(line)),
+                   "format <kind> 1.0");
         }
         if (w[1] == "ascii") {
           format_ = Format::Ascii;
@@ -241,7 +257,7 @@ class PlyReader {
         } else if (w[1] == "binary_big_endian") {
           format_ = Format::BinaryBig;
         } else {
-          failLine(line_, "format", fmt::format("unknown format '{}'", w[1]),
+          failLine(line_, "format", fmt::format("unknown format '{}'", detail::excerpt(w[1])),
                    "ascii, binary_little_endian, binary_big_endian");
         }
         cloud_.format = std::string(w[1]);
@@ -249,17 +265,19 @@ class PlyReader {
       } else if (w[0] == "element") {
         HeaderElement e;
         if (w.size() != 3 || !parseWhole(w[2], e.count)) {
-          failLine(line_, "element", fmt::format("bad element line '{}'", line),
+          failLine(line_, "element", fmt::format("bad element line '{}'", detail::excerpt(line)),
                    "element <name> <count>");
         }
         e.name = std::string(w[1]);
         e.line = line_;
         for (const HeaderElement& other : elements_) {
-          if (other.name == e.name) failLine(line_, "element", "element declared twice", "unique names");
+          if (other.name == e.name)
+            failLine(line_, "element", "element declared twice", "unique names");
         }
         elements_.push_back(std::move(e));
       } else if (w[0] == "property") {
-        if (elements_.empty()) failLine(line_, "property", "property before any element", "element first");
+        if (elements_.empty())
+          failLine(line_, "property", "property before any element", "element first");
         HeaderProperty p;
         if (w.size() == 3) {
           p.type = scalarType(w[1]);
@@ -268,25 +286,28 @@ class PlyReader {
           p.isList = true;
           p.countType = scalarType(w[2]);
           p.type = scalarType(w[3]);
-          if (isFloat(p.countType)) failLine(line_, "property", "list count of float type", "an integer type");
+          if (isFloat(p.countType))
+            failLine(line_, "property", "list count of float type", "an integer type");
           p.name = std::string(w[4]);
         } else {
-          failLine(line_, "property", fmt::format("bad property line '{}'", line),
+          failLine(line_, "property", fmt::format("bad property line '{}'", detail::excerpt(line)),
                    "property <type> <name> or property list <count type> <type> <name>");
         }
         for (const HeaderProperty& other : elements_.back().properties) {
-          if (other.name == p.name) failLine(line_, "property", "property declared twice", "unique names");
+          if (other.name == p.name)
+            failLine(line_, "property", "property declared twice", "unique names");
         }
         elements_.back().properties.push_back(std::move(p));
       } else {
-        failLine(line_, "header", fmt::format("unknown header line '{}'", line),
+        failLine(line_, "header", fmt::format("unknown header line '{}'", detail::excerpt(line)),
                  "format, comment, obj_info, element, property, end_header");
       }
     }
     if (!haveFormat) failLine(line_, "header", "no format line", "format <kind> 1.0");
     const auto vertex = std::find_if(elements_.begin(), elements_.end(),
                                      [](const HeaderElement& e) { return e.name == "vertex"; });
-    if (vertex == elements_.end()) failLine(line_, "header", "no vertex element", "element vertex <count>");
+    if (vertex == elements_.end())
+      failLine(line_, "header", "no vertex element", "element vertex <count>");
     for (const char* axis : {"x", "y", "z"}) {
       if (std::none_of(vertex->properties.begin(), vertex->properties.end(),
                        [&](const HeaderProperty& p) { return !p.isList && p.name == axis; })) {
@@ -305,8 +326,9 @@ class PlyReader {
     }
     const std::uint64_t left = bytes_.size() - pos_ + (format_ == Format::Ascii ? 1 : 0);
     if (least > 0 && e.count > left / least) {
-      failBody(e.name, fmt::format("{} {} elements cannot fit in the {} bytes left", e.count, e.name,
-                                   bytes_.size() - pos_),
+      failBody(e.name,
+               fmt::format("{} {} elements cannot fit in the {} bytes left", e.count, e.name,
+                           bytes_.size() - pos_),
                "a complete PLY file");
     }
   }
@@ -342,8 +364,9 @@ class PlyReader {
     double v = 0;
     const auto [lo, hi] = scalarRange(t);
     if (!parseWhole(token, v) || !(v >= lo && v <= hi) || (!isFloat(t) && v != std::floor(v))) {
-      failBody(element, fmt::format("bad value '{}'", token.substr(0, 40)),
-               fmt::format("a finite {} value", isFloat(t) ? "floating-point" : "integer in range"));
+      failBody(
+          element, fmt::format("bad value '{}'", detail::excerpt(token)),
+          fmt::format("a finite {} value", isFloat(t) ? "floating-point" : "integer in range"));
     }
     pos_ = end;
     return v;
@@ -361,7 +384,8 @@ class PlyReader {
       if (isVertex) {
         cloud_.vertexCount = static_cast<std::size_t>(e.count);
         for (const HeaderProperty& p : e.properties) {
-          if (!p.isList) cloud_.properties.push_back({p.name, p.type, std::vector<double>(cloud_.vertexCount)});
+          if (!p.isList)
+            cloud_.properties.push_back({p.name, p.type, std::vector<double>(cloud_.vertexCount)});
         }
         std::size_t k = 0;
         for (std::size_t i = 0; i < e.properties.size(); ++i) {
@@ -374,7 +398,8 @@ class PlyReader {
           const HeaderProperty& p = e.properties[i];
           if (p.isList) {
             const double length = value(p.countType, e.name);
-            if (length < 0) failBody(e.name, fmt::format("negative list length {}", length), ">= 0");
+            if (length < 0)
+              failBody(e.name, fmt::format("negative list length {}", length), ">= 0");
             for (std::uint64_t j = 0; j < static_cast<std::uint64_t>(length); ++j) {
               static_cast<void>(value(p.type, e.name));
             }
@@ -395,7 +420,8 @@ class PlyReader {
       while (pos_ < bytes_.size() && isSpace(bytes_[pos_])) ++pos_;
     }
     if (pos_ != bytes_.size()) {
-      failBody("end", fmt::format("{} unexpected bytes after the last element", bytes_.size() - pos_),
+      failBody("end",
+               fmt::format("{} unexpected bytes after the last element", bytes_.size() - pos_),
                "nothing after the last element");
     }
   }
@@ -423,9 +449,9 @@ void encodePlyInto(std::string& out, const FrameSnapshot& frame) {
   for (const FluidSnapshot& fluid : frame.fluids) {
     const std::size_t n = fluid.count();
     if (fluid.positions.size() != 3 * n || fluid.velocities.size() != 3 * n) {
-      throw std::invalid_argument(fmt::format(
-          "encodePly: fluid '{}' has {} ids, {} position and {} velocity components", fluid.name,
-          n, fluid.positions.size(), fluid.velocities.size()));
+      throw std::invalid_argument(
+          fmt::format("encodePly: fluid '{}' has {} ids, {} position and {} velocity components",
+                      fluid.name, n, fluid.positions.size(), fluid.velocities.size()));
     }
     checkCommentName(fluid.name);
     total += n;

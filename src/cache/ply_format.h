@@ -16,22 +16,22 @@ enum class PlyScalar { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float
 
 /// One scalar property of the `vertex` element, every vertex's value widened to double.
 struct PlyProperty {
-  std::string name;                       ///< e.g. "x"
-  PlyScalar type = PlyScalar::Float32;    ///< type declared in the header
-  std::vector<double> values;             ///< one per vertex
+  std::string name;                     ///< e.g. "x"
+  PlyScalar type = PlyScalar::Float32;  ///< type declared in the header
+  std::vector<double> values;           ///< one per vertex
 };
 
 /// A decoded PLY point cloud: the `vertex` element's scalar properties, plus what the
 /// softsub header comments say (frame, time, fluid names). Other elements are skipped.
 struct PlyCloud {
-  std::string format;                     ///< ascii, binary_little_endian or binary_big_endian
-  std::vector<std::string> comments;      ///< every `comment` line's text, in order
-  bool hasFrame = false;                  ///< a `comment softsub frame F time T` line was found
-  std::int64_t frame = 0;                 ///< frame number from that comment
-  double time = 0;                        ///< time from that comment, seconds
-  std::vector<std::string> fluidNames;    ///< from `comment fluid <index> <name>` lines
-  std::size_t vertexCount = 0;            ///< number of vertices
-  std::vector<PlyProperty> properties;    ///< scalar vertex properties, header order
+  std::string format;                   ///< ascii, binary_little_endian or binary_big_endian
+  std::vector<std::string> comments;    ///< every `comment` line's text, in order
+  bool hasFrame = false;                ///< a `comment softsub frame F time T` line was found
+  std::int64_t frame = 0;               ///< frame number from that comment
+  double time = 0;                      ///< time from that comment, seconds
+  std::vector<std::string> fluidNames;  ///< from `comment fluid <index> <name>` lines
+  std::size_t vertexCount = 0;          ///< number of vertices
+  std::vector<PlyProperty> properties;  ///< scalar vertex properties, header order
 
   /// The vertex property called `name`, or nullptr.
   [[nodiscard]] const PlyProperty* find(std::string_view name) const;

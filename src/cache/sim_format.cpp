@@ -11,6 +11,7 @@
 #include <pugixml.hpp>
 
 #include "cache/atomic_file.h"
+#include "cache/message.h"
 #include "core/error.h"
 
 namespace softsub::cache {
@@ -33,11 +34,11 @@ void appendEscaped(std::string& out, std::string_view s, std::string_view elemen
       case '\r': out += "&#13;"; break;  // a raw CR would be read back as LF
       default:
         if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
-          throw InputError({"", 0, std::string(element)},
-                           fmt::format("name contains control character {:#04x}",
-                                       static_cast<unsigned char>(c)),
-                           "characters XML 1.0 can hold: no control characters but tab "
-                           "and line breaks");
+          throw InputError(
+              {"", 0, std::string(element)},
+              fmt::format("name contains control character {:#04x}", static_cast<unsigned char>(c)),
+              "characters XML 1.0 can hold: no control characters but tab "
+              "and line breaks");
         }
         out += c;
     }
@@ -66,8 +67,8 @@ void appendObject(std::string& out, const SimObject& object) {
   out += "  <Object>\n    <Name>";
   appendEscaped(out, object.name, "Object/Name");
   fmt::format_to(it, "</Name>\n    <UniformScale>{}</UniformScale>\n", object.uniformScale);
-  fmt::format_to(it, "    <Position>{} {} {}</Position>\n", object.position[0],
-                 object.position[1], object.position[2]);
+  fmt::format_to(it, "    <Position>{} {} {}</Position>\n", object.position[0], object.position[1],
+                 object.position[2]);
   fmt::format_to(it, "    <Rotation>{} {} {} {}</Rotation>\n", object.rotation[0],
                  object.rotation[1], object.rotation[2], object.rotation[3]);
   out += "    <Filename>";
@@ -137,9 +138,10 @@ class SimReader {
 
   int lineAt(std::ptrdiff_t offset) const {
     if (offset < 0) return 0;
-    const auto end = static_cast<std::size_t>(std::min<std::ptrdiff_t>(
-        offset, static_cast<std::ptrdiff_t>(text_.size())));
-    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+    const auto end = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(offset, static_cast<std::ptrdiff_t>(text_.size())));
+    return 1 + static_cast<int>(std::count(text_.begin(),
+                                           text_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
   }
 
   void readRoot(const pugi::xml_document& doc, SimFile& result) {
@@ -149,7 +151,8 @@ class SimReader {
            "the root element is not <Simulation>", "<Simulation version=\"1\" ...>");
     }
     for (pugi::xml_node n = root.next_sibling(); n; n = n.next_sibling()) {
-      if (n.type() == pugi::node_element) fail(n, n.name(), "second root element", "one <Simulation>");
+      if (n.type() == pugi::node_element)
+        fail(n, n.name(), "second root element", "one <Simulation>");
     }
     bool haveVersion = false, haveFrame = false, haveTime = false;
     for (const pugi::xml_attribute& a : root.attributes()) {
@@ -157,26 +160,34 @@ class SimReader {
       const std::string_view value = trim(a.value());
       if (name == "version") {
         if (value != "1") {
-          fail(root, "Simulation", fmt::format("unsupported version '{}'", a.value()), "1");
+          fail(root, "Simulation",
+               fmt::format("unsupported version '{}'", detail::excerpt(a.value())), "1");
         }
         haveVersion = true;
       } else if (name == "frame") {
         if (!parseNumber(value, result.frame.frame) || result.frame.frame < 0) {
-          fail(root, "Simulation", fmt::format("bad frame '{}'", a.value()), "an integer >= 0");
+          fail(root, "Simulation", fmt::format("bad frame '{}'", detail::excerpt(a.value())),
+               "an integer >= 0");
         }
         haveFrame = true;
       } else if (name == "time") {
         if (!parseNumber(value, result.frame.time)) {
-          fail(root, "Simulation", fmt::format("bad time '{}'", a.value()), "a finite number");
+          fail(root, "Simulation", fmt::format("bad time '{}'", detail::excerpt(a.value())),
+               "a finite number");
         }
         haveTime = true;
       } else {
-        fail(root, "Simulation", fmt::format("unknown attribute '{}'", name),
+        fail(root, "Simulation", fmt::format("unknown attribute '{}'", detail::excerpt(name)),
              "version, frame, time");
       }
     }
-    if (!haveVersion || !haveFrame || !haveTime) {
-      fail(root, "Simulation", "missing attribute", "version, frame and time are required");
+    for (const auto& [have, attribute] :
+         {std::pair{haveVersion, "version"}, std::pair{haveFrame, "frame"},
+          std::pair{haveTime, "time"}}) {
+      if (!have) {
+        fail(root, "Simulation", fmt::format("missing attribute '{}'", attribute),
+             "version, frame and time are required");
+      }
     }
 
     std::unordered_set<std::string> fluidNames, objectNames;
@@ -190,13 +201,15 @@ class SimReader {
       if (name == "Fluid") {
         FluidSnapshot& fluid = result.frame.fluids.emplace_back(readFluid(child));
         if (!fluidNames.insert(fluid.name).second) {
-          fail(child, "Fluid/Name", fmt::format("duplicate fluid name '{}'", fluid.name),
+          fail(child, "Fluid/Name",
+               fmt::format("duplicate fluid name '{}'", detail::excerpt(fluid.name)),
                "unique names");
         }
       } else if (name == "Object") {
         SimObject& object = result.objects.emplace_back(readObject(child));
         if (!objectNames.insert(object.name).second) {
-          fail(child, "Object/Name", fmt::format("duplicate object name '{}'", object.name),
+          fail(child, "Object/Name",
+               fmt::format("duplicate object name '{}'", detail::excerpt(object.name)),
                "unique names");
         }
       } else {
@@ -261,8 +274,8 @@ class SimReader {
     const std::string_view numberText = trim(textOf(numberNode, "Fluid/ParticleNumber", storage));
     std::uint64_t declared = 0;
     if (!parseNumber(numberText, declared)) {
-      fail(numberNode, "Fluid/ParticleNumber", fmt::format("bad count '{}'", numberText),
-           "an integer >= 0");
+      fail(numberNode, "Fluid/ParticleNumber",
+           fmt::format("bad count '{}'", detail::excerpt(numberText)), "an integer >= 0");
     }
 
     const std::string_view values = textOf(particlesNode, "Fluid/Particles", storage);
@@ -279,12 +292,14 @@ class SimReader {
       while (end < values.size() && !isSpace(values[end])) ++end;
       float v = 0;
       if (!parseNumber(values.substr(pos, end - pos), v)) {
-        const int line = lineAt(textNode.offset_debug()) +
-                         static_cast<int>(std::count(values.begin(),
-                                                     values.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+        const int line =
+            lineAt(textNode.offset_debug()) +
+            static_cast<int>(std::count(values.begin(),
+                                        values.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
         throw InputError({file_, line, "Fluid/Particles"},
                          fmt::format("bad coordinate '{}' in fluid '{}'",
-                                     values.substr(pos, std::min<std::size_t>(end - pos, 40)), fluid.name),
+                                     detail::excerpt(values.substr(pos, end - pos)),
+                                     detail::excerpt(fluid.name)),
                          "finite numbers within float range");
       }
       fluid.positions.push_back(v);
@@ -292,7 +307,8 @@ class SimReader {
     }
     if (fluid.positions.size() % 3 != 0) {
       fail(particlesNode, "Fluid/Particles",
-           fmt::format("{} numbers is not a whole number of x y z positions", fluid.positions.size()),
+           fmt::format("{} numbers is not a whole number of x y z positions",
+                       fluid.positions.size()),
            "three numbers per particle");
     }
     const std::size_t n = fluid.positions.size() / 3;
@@ -320,14 +336,15 @@ class SimReader {
       while (end < text.size() && !isSpace(text[end])) ++end;
       double x = 0;
       if (count == N || !parseNumber(text.substr(pos, end - pos), x)) {
-        fail(node, element, fmt::format("bad value '{}'", trim(text)),
+        fail(node, element, fmt::format("bad value '{}'", detail::excerpt(trim(text))),
              fmt::format("{} finite numbers", N));
       }
       v[count++] = x;
       pos = end;
     }
     if (count != N) {
-      fail(node, element, fmt::format("bad value '{}'", trim(text)), fmt::format("{} finite numbers", N));
+      fail(node, element, fmt::format("bad value '{}'", detail::excerpt(trim(text))),
+           fmt::format("{} finite numbers", N));
     }
     return v;
   }

@@ -14,11 +14,11 @@ namespace softsub::cache {
 
 /// One rigid body's pose at a frame, as the `.sim` file's `<Object>` element holds it.
 struct SimObject {
-  std::string name;                        ///< the body's unique name from the scene
-  double uniformScale = 1;                 ///< the scene's UniformScale
-  std::array<double, 3> position{0, 0, 0}; ///< world position, scene units
-  std::array<double, 4> rotation{1, 0, 0, 0}; ///< unit quaternion w x y z
-  std::string filename;                    ///< the body's geometry file, as in the scene
+  std::string name;                            ///< the body's unique name from the scene
+  double uniformScale = 1;                     ///< the scene's UniformScale
+  std::array<double, 3> position{0, 0, 0};     ///< world position, scene units
+  std::array<double, 4> rotation{1, 0, 0, 0};  ///< unit quaternion w x y z
+  std::string filename;                        ///< the body's geometry file, as in the scene
 };
 
 /// A decoded `.sim` file. The file stores neither ids, velocities, colours, sizes nor the

@@ -75,7 +75,8 @@ TEST(AtomicFile, ReadOnlyFolderThrowsAndKeepsTheOldFile) {
   const auto sub = dir.path() / "ro";
   std::filesystem::create_directory(sub);
   writeFileAtomic(sub / "f", "old");
-  std::filesystem::permissions(sub, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  std::filesystem::permissions(
+      sub, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   EXPECT_THROW(writeFileAtomic(sub / "f", "new"), IoError);
   std::filesystem::permissions(sub, std::filesystem::perms::owner_all);
   EXPECT_EQ(readFileBytes(sub / "f"), "old");

@@ -39,8 +39,14 @@ void fuzz(const std::string& good, Decode decode, std::uint32_t seed) {
     try {
       decode(bad);
       ++accepted;
-    } catch (const InputError&) {
-      // expected
+    } catch (const InputError& e) {
+      // Expected; the message quotes the input only as a short, printable excerpt.
+      const std::string what = e.what();
+      ASSERT_LT(what.size(), 400U) << what;
+      for (const char c : what) {
+        ASSERT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            << "mutation " << i << ": " << what;
+      }
     } catch (const std::exception& e) {
       FAIL() << "mutation " << i << " threw a non-InputError: " << e.what();
     }
@@ -49,16 +55,19 @@ void fuzz(const std::string& good, Decode decode, std::uint32_t seed) {
 }
 
 TEST(DecoderFuzz, Sim) {
-  fuzz(encodeSim(test::makeFrame()), [](const std::string& b) { return decodeSim(b, "f.sim"); }, 11);
+  fuzz(
+      encodeSim(test::makeFrame()), [](const std::string& b) { return decodeSim(b, "f.sim"); }, 11);
 }
 
 TEST(DecoderFuzz, Pdc) {
   const FrameSnapshot frame = test::makeFrame();
-  fuzz(encodePdc(frame.fluids[1]), [](const std::string& b) { return decodePdc(b, "f.pdc"); }, 12);
+  fuzz(
+      encodePdc(frame.fluids[1]), [](const std::string& b) { return decodePdc(b, "f.pdc"); }, 12);
 }
 
 TEST(DecoderFuzz, PlyBinary) {
-  fuzz(encodePly(test::makeFrame()), [](const std::string& b) { return decodePly(b, "f.ply"); }, 13);
+  fuzz(
+      encodePly(test::makeFrame()), [](const std::string& b) { return decodePly(b, "f.ply"); }, 13);
 }
 
 TEST(DecoderFuzz, PlyAscii) {
@@ -67,7 +76,8 @@ TEST(DecoderFuzz, PlyAscii) {
       "property float z\nproperty list uchar int idx\nelement face 1\n"
       "property list uchar uint vertex_indices\nend_header\n"
       "1 2 3 1 7\n4 5 6 0\n7 8 9 2 1 2\n3 0 1 2\n";
-  fuzz(ascii, [](const std::string& b) { return decodePly(b, "f.ply"); }, 14);
+  fuzz(
+      ascii, [](const std::string& b) { return decodePly(b, "f.ply"); }, 14);
 }
 
 }  // namespace

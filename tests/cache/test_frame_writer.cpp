@@ -76,7 +76,8 @@ TEST(FrameWriter, EachFormatSubsetWritesExactlyItsFiles) {
     if (f.ply) expected.push_back(ply);
     if (f.sim) expected.push_back(sim);
     std::vector<std::string> written;
-    for (const auto& p : writer.lastWritten()) written.push_back(p.lexically_relative(dir).string());
+    for (const auto& p : writer.lastWritten())
+      written.push_back(p.lexically_relative(dir).string());
     EXPECT_EQ(written, expected) << formatsToString(f);  // .sim last
     std::sort(expected.begin(), expected.end());
     EXPECT_EQ(listFiles(dir), expected) << formatsToString(f);
@@ -126,7 +127,8 @@ TEST(FrameWriter, SameSnapshotGivesIdenticalBytes) {
     before.push_back(readFileBytes(a.path() / f));
   }
   first.onFrame(frame);  // rewriting a frame replaces its files with the same bytes
-  for (std::size_t i = 0; i < files.size(); ++i) EXPECT_EQ(readFileBytes(a.path() / files[i]), before[i]);
+  for (std::size_t i = 0; i < files.size(); ++i)
+    EXPECT_EQ(readFileBytes(a.path() / files[i]), before[i]);
   EXPECT_EQ(listFiles(a.path()), files);
 }
 

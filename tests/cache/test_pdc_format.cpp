@@ -63,9 +63,11 @@ TEST(PdcFormat, BytesMatchTheMayaLayoutFieldByField) {
   EXPECT_EQ(c.int32(), 5);
 
   expectAttributeHeader(c, "position", 5);
-  for (std::size_t i = 0; i < 3 * n; ++i) ASSERT_EQ(c.float64(), static_cast<double>(fluid.positions[i]));
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    ASSERT_EQ(c.float64(), static_cast<double>(fluid.positions[i]));
   expectAttributeHeader(c, "velocity", 5);
-  for (std::size_t i = 0; i < 3 * n; ++i) ASSERT_EQ(c.float64(), static_cast<double>(fluid.velocities[i]));
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    ASSERT_EQ(c.float64(), static_cast<double>(fluid.velocities[i]));
   expectAttributeHeader(c, "particleId", 3);
   for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(c.float64(), static_cast<double>(fluid.ids[k]));
   expectAttributeHeader(c, "radiusPP", 3);
@@ -86,11 +88,12 @@ TEST(PdcFormat, KnownValueHasKnownBytes) {
   f.velocities = {0, 0, 0};
   const std::string bytes = encodePdc(f);
   // "PDC " 00000001 00000001 00000000 00000000 00000001 00000005, then "position".
-  const std::string head("PDC \0\0\0\1\0\0\0\1\0\0\0\0\0\0\0\0\0\0\0\1\0\0\0\5\0\0\0\x08position\0\0\0\5", 44);
+  const std::string head(
+      "PDC \0\0\0\1\0\0\0\1\0\0\0\0\0\0\0\0\0\0\0\1\0\0\0\5\0\0\0\x08position\0\0\0\5", 44);
   EXPECT_EQ(bytes.substr(0, 44), head);
-  EXPECT_EQ(bytes.substr(44, 8), std::string("\x3f\xf0\0\0\0\0\0\0", 8));    // 1.0
-  EXPECT_EQ(bytes.substr(52, 8), std::string("\xc0\x00\0\0\0\0\0\0", 8));    // -2.0
-  EXPECT_EQ(bytes.substr(60, 8), std::string("\x3f\xe0\0\0\0\0\0\0", 8));    // 0.5
+  EXPECT_EQ(bytes.substr(44, 8), std::string("\x3f\xf0\0\0\0\0\0\0", 8));  // 1.0
+  EXPECT_EQ(bytes.substr(52, 8), std::string("\xc0\x00\0\0\0\0\0\0", 8));  // -2.0
+  EXPECT_EQ(bytes.substr(60, 8), std::string("\x3f\xe0\0\0\0\0\0\0", 8));  // 0.5
 }
 
 TEST(PdcFormat, DecoderRoundTrip) {
@@ -104,8 +107,10 @@ TEST(PdcFormat, DecoderRoundTrip) {
   EXPECT_EQ(file.count, 100);
   ASSERT_EQ(file.attributes.size(), 5U);
   const std::vector<std::pair<std::string, PdcType>> expected = {
-      {"position", PdcType::VectorArray}, {"velocity", PdcType::VectorArray},
-      {"particleId", PdcType::DoubleArray}, {"radiusPP", PdcType::DoubleArray},
+      {"position", PdcType::VectorArray},
+      {"velocity", PdcType::VectorArray},
+      {"particleId", PdcType::DoubleArray},
+      {"radiusPP", PdcType::DoubleArray},
       {"rgbPP", PdcType::VectorArray}};
   for (std::size_t i = 0; i < expected.size(); ++i) {
     EXPECT_EQ(file.attributes[i].name, expected[i].first);
@@ -136,7 +141,8 @@ TEST(PdcFormat, EmptyFluidIsAValidFile) {
 struct Builder {
   std::string bytes;
   Builder& i32(std::int64_t v) {
-    for (int s = 24; s >= 0; s -= 8) bytes += static_cast<char>((static_cast<std::uint32_t>(v) >> s) & 0xff);
+    for (int s = 24; s >= 0; s -= 8)
+      bytes += static_cast<char>((static_cast<std::uint32_t>(v) >> s) & 0xff);
     return *this;
   }
   Builder& f64(double d) {
@@ -203,7 +209,8 @@ TEST(PdcFormat, TruncatedAndGarbageInputIsRefused) {
   expectRefused(Builder().str("PDC ").i32(2).i32(1).i32(0).i32(0).i32(0).i32(0).bytes, "version 2");
   // A little-endian writer's header: refused with a message saying so.
   try {
-    static_cast<void>(decodePdc(std::string("PDC \1\0\0\0\1\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 28), "le.pdc"));
+    static_cast<void>(decodePdc(
+        std::string("PDC \1\0\0\0\1\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 28), "le.pdc"));
     ADD_FAILURE() << "little-endian accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("little-endian"), std::string::npos) << e.what();

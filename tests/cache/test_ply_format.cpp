@@ -43,7 +43,8 @@ struct LittleCursor {
   std::size_t pos;
   std::uint32_t u32() {
     std::uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = v * 256 + static_cast<unsigned char>(bytes.at(pos + static_cast<std::size_t>(i)));
+    for (int i = 3; i >= 0; --i)
+      v = v * 256 + static_cast<unsigned char>(bytes.at(pos + static_cast<std::size_t>(i)));
     pos += 4;
     return v;
   }
@@ -63,13 +64,16 @@ TEST(PlyFormat, BinaryRecordsHoldTheSnapshotValues) {
   for (std::size_t f = 0; f < frame.fluids.size(); ++f) {
     const FluidSnapshot& fluid = frame.fluids[f];
     for (std::size_t k = 0; k < fluid.count(); ++k) {
-      for (int i = 0; i < 3; ++i) EXPECT_EQ(c.f32(), fluid.positions[3 * k + static_cast<std::size_t>(i)]);
-      for (int i = 0; i < 3; ++i) EXPECT_EQ(c.f32(), fluid.velocities[3 * k + static_cast<std::size_t>(i)]);
+      for (int i = 0; i < 3; ++i)
+        EXPECT_EQ(c.f32(), fluid.positions[3 * k + static_cast<std::size_t>(i)]);
+      for (int i = 0; i < 3; ++i)
+        EXPECT_EQ(c.f32(), fluid.velocities[3 * k + static_cast<std::size_t>(i)]);
       EXPECT_EQ(c.u32(), fluid.ids[k]);
       EXPECT_EQ(c.u32(), f);
       const std::vector<unsigned> rgb{c.u8(), c.u8(), c.u8()};
       // honey (0.25, 0.5, 1) and oil (1, 0, 0.123): rounded, not truncated.
-      EXPECT_EQ(rgb, f == 0 ? (std::vector<unsigned>{64, 128, 255}) : (std::vector<unsigned>{255, 0, 31}));
+      EXPECT_EQ(rgb, f == 0 ? (std::vector<unsigned>{64, 128, 255})
+                            : (std::vector<unsigned>{255, 0, 31}));
     }
   }
   EXPECT_EQ(c.pos, bytes.size());
@@ -183,23 +187,31 @@ TEST(PlyFormat, RefusesTruncatedGarbageAndUnreadableHeaders) {
   const std::string start = "ply\nformat ascii 1.0\n";
   expectRefused("ply\nformat binary_middle_endian 1.0\nend_header\n", "format");
   expectRefused("ply\nformat ascii 2.0\nend_header\n", "format version");
-  expectRefused("ply\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
-                "no format");
+  expectRefused(
+      "ply\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+      "no format");
   expectRefused(start + "element vertex 1\nproperty half x\nend_header\n0\n", "unknown type");
-  expectRefused(start + "element vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", "no z");
+  expectRefused(start + "element vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
+                "no z");
   expectRefused(start + "element face 0\nend_header\n", "no vertex");
   expectRefused(start + "property float x\nend_header\n", "property before element");
-  expectRefused(start + "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-                        "property float x\nend_header\n1 2 3 4\n", "duplicate property");
+  expectRefused(start +
+                    "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property float x\nend_header\n1 2 3 4\n",
+                "duplicate property");
   expectRefused(start + "element vertex 1\nbogus line\nend_header\n", "unknown line");
   const std::string xyz = "property float x\nproperty float y\nproperty float z\nend_header\n";
   expectRefused(start + "element vertex 1\n" + xyz + "1 2\n", "ascii ends early");
   expectRefused(start + "element vertex 1\n" + xyz + "1 2 nan\n", "ascii nan");
   expectRefused(start + "element vertex 1\n" + xyz + "1 2 3 4\n", "ascii extra value");
-  expectRefused(start + "element vertex 1\nproperty uchar x\nproperty float y\nproperty float z\n"
-                        "end_header\n256 0 0\n", "uchar out of range");
-  expectRefused(start + "element vertex 1\nproperty int x\nproperty float y\nproperty float z\n"
-                        "end_header\n1.5 0 0\n", "fractional int");
+  expectRefused(start +
+                    "element vertex 1\nproperty uchar x\nproperty float y\nproperty float z\n"
+                    "end_header\n256 0 0\n",
+                "uchar out of range");
+  expectRefused(start +
+                    "element vertex 1\nproperty int x\nproperty float y\nproperty float z\n"
+                    "end_header\n1.5 0 0\n",
+                "fractional int");
   try {
     static_cast<void>(decodePly(start + "element vertex 2\n" + xyz + "1 2 3\n4 x 6\n", "line.ply"));
     ADD_FAILURE() << "bad ascii value accepted";

@@ -91,8 +91,9 @@ TEST(SimFormat, RandomFloatsRoundTripBitExact) {
 TEST(SimFormat, NamesWithXmlSpecialCharactersRoundTrip) {
   std::mt19937 rng(1);
   FrameSnapshot frame;
-  const std::vector<std::string> names = {"a<b>&\"c'd", "x&amp;y", "]]>", " spaced ",
-                                          "miel \xC3\xA9t\xC3\xA9", "line\nbreak", "cr\rlf"};
+  const std::vector<std::string> names = {
+      "a<b>&\"c'd",  "x&amp;y", "]]>", " spaced ", "miel \xC3\xA9t\xC3\xA9",
+      "line\nbreak", "cr\rlf"};
   for (const std::string& name : names) frame.fluids.push_back(makeFluid(name, 2, 0, rng));
   const std::string text = encodeSim(frame);
   EXPECT_EQ(text.find("a<b>"), std::string::npos);
@@ -136,7 +137,8 @@ TEST(SimFormat, ObjectsRoundTripAndAreAcceptedInAnyOrder) {
 
   const std::string handWritten =
       "<Simulation version=\"1\" frame=\"0\" time=\"0\">\n"
-      "<Fluid><Name>a</Name><ParticleNumber>1</ParticleNumber><Particles>+1 2 3</Particles></Fluid>\n"
+      "<Fluid><Name>a</Name><ParticleNumber>1</ParticleNumber><Particles>+1 2 "
+      "3</Particles></Fluid>\n"
       "<Object><Name>o</Name><Rotation>1 0 0 0</Rotation><Position>1 2 3</Position></Object>\n"
       "</Simulation>";
   const SimFile mixed = decodeSim(handWritten, "mixed.sim");
@@ -191,11 +193,15 @@ TEST(SimFormat, BadInputNamesFileLineAndElement) {
   EXPECT_EQ(e.where().element, "Fluid/Name");
   e = decodeError(head + "<Rigid/>\n" + tail);
   EXPECT_EQ(e.where().element, "Rigid");
-  e = decodeError(head + "<Object><Name>o</Name><Position>1 2</Position>"
-                         "<Rotation>1 0 0 0</Rotation></Object>" + tail);
+  e = decodeError(head +
+                  "<Object><Name>o</Name><Position>1 2</Position>"
+                  "<Rotation>1 0 0 0</Rotation></Object>" +
+                  tail);
   EXPECT_EQ(e.where().element, "Object/Position");
-  e = decodeError(head + "<Object><Name>o</Name><Position>1 2 3</Position>"
-                         "<Rotation>2 0 0 0</Rotation></Object>" + tail);
+  e = decodeError(head +
+                  "<Object><Name>o</Name><Position>1 2 3</Position>"
+                  "<Rotation>2 0 0 0</Rotation></Object>" +
+                  tail);
   EXPECT_EQ(e.where().element, "Object/Rotation");
 }
 
@@ -208,7 +214,8 @@ TEST(SimFormat, BadRootAndMalformedXmlAreRefused) {
   decodeError("<Simulation version=\"1\" frame=\"-3\" time=\"0\"/>");
   decodeError("<Simulation version=\"1\" frame=\"1\" time=\"nan\"/>");
   decodeError("<Simulation version=\"1\" frame=\"1\" time=\"0\" fps=\"24\"/>");
-  const InputError e = decodeError("<Simulation version=\"1\" frame=\"1\" time=\"0\">\n\n<Fluid>\n");
+  const InputError e =
+      decodeError("<Simulation version=\"1\" frame=\"1\" time=\"0\">\n\n<Fluid>\n");
   EXPECT_GE(e.where().line, 3);
   EXPECT_NE(std::string(e.what()).find("malformed XML"), std::string::npos);
 
