@@ -70,6 +70,12 @@ class Context {
     return static_cast<int>(it - lineStarts_.begin());
   }
   [[nodiscard]] int lineOf(pugi::xml_node node) const { return lineAt(node.offset_debug()); }
+  /// Line of the first non-blank character of a text node.
+  [[nodiscard]] int textLine(pugi::xml_node text) const {
+    const std::string_view v = text.value();
+    const auto lead = v.substr(0, static_cast<std::size_t>(trimSpace(v).data() - v.data()));
+    return lineOf(text) + static_cast<int>(std::count(lead.begin(), lead.end(), '\n'));
+  }
 
   [[noreturn]] void fail(int line, std::string element, std::string problem,
                          std::string allowed = {}) const {
@@ -158,8 +164,7 @@ class Children {
       if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
         const std::string_view text = trimSpace(child.value());
         if (!text.empty()) {
-          const int line = cx_.lineOf(child);
-          cx_.fail(line > 0 ? line : cx_.lineOf(parent_), selfPath(),
+          cx_.fail(cx_.textLine(child), selfPath(),
                    fmt::format("unexpected text {}", quote(text)),
                    fmt::format("child elements only: {}", acceptedList()));
         }
@@ -315,7 +320,7 @@ class SceneReader {
     pugi::xml_node root;
     for (const pugi::xml_node n : doc.children()) {
       if (n.type() == pugi::node_pcdata && !trimSpace(n.value()).empty()) {
-        cx_.fail(cx_.lineOf(n), "Scene", "text outside the root element", "one <Scene> element");
+        cx_.fail(cx_.textLine(n), "Scene", "text outside the root element", "one <Scene> element");
       }
       if (n.type() != pugi::node_element) continue;
       if (root) {
@@ -593,8 +598,10 @@ SceneDesc readSceneText(std::string_view text, const std::string& fileName,
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
   const Context cx(text, fileName, options);
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed =
-      doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+  // parse_fragment keeps text outside the root as nodes (pugixml drops it otherwise);
+  // SceneReader then insists on exactly one root element and no text around it.
+  const pugi::xml_parse_result parsed = doc.load_buffer(
+      text.data(), text.size(), pugi::parse_default | pugi::parse_fragment, pugi::encoding_utf8);
   if (!parsed) {
     cx.fail(cx.lineAt(parsed.offset), "XML", fmt::format("not well-formed: {}", parsed.description()),
             "well-formed XML");

@@ -67,7 +67,7 @@ class ValueParser {
       case Kind::Vec3:
       case Kind::Colour:
         if (tokens_.size() != 3) bad(fmt::format("expected 3 numbers, got {}", tokens_.size()));
-        return Vec3(number(tokens_[0]), number(tokens_[1]), number(tokens_[2]));
+        return point(0);
       case Kind::String:
         if (text_.empty()) bad("the value is empty");
         return std::string(text_);
@@ -85,9 +85,7 @@ class ValueParser {
         }
         std::vector<Vec3> points;
         points.reserve(tokens_.size() / 3);
-        for (std::size_t i = 0; i < tokens_.size(); i += 3) {
-          points.emplace_back(number(tokens_[i]), number(tokens_[i + 1]), number(tokens_[i + 2]));
-        }
+        for (std::size_t i = 0; i < tokens_.size(); i += 3) points.push_back(point(i));
         return points;
       }
     }
@@ -110,6 +108,14 @@ class ValueParser {
     if (auto problem = parseReal(token, v); !problem.empty()) bad(std::move(problem));
     if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token));
     return v;
+  }
+
+  // Tokens first .. first + 2 as a point, checked left to right (so the first bad
+  // number is the one reported; constructor arguments have no evaluation order).
+  [[nodiscard]] Vec3 point(std::size_t first) const {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = number(tokens_[first + static_cast<std::size_t>(a)]);
+    return p;
   }
 
   [[nodiscard]] std::int64_t integer(std::string_view token) const {

@@ -1,0 +1,44 @@
+#pragma once
+/// Helpers shared by the scene tests: wrapping snippets into scenes and finding lines.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <string_view>
+
+#include "core/error.h"
+#include "scene/reader.h"
+
+namespace softsub::scene::testing {
+
+/// 1-based line of the first line containing marker, 0 if none.
+inline int lineOf(std::string_view text, std::string_view marker) {
+  const std::size_t at = text.find(marker);
+  if (at == std::string_view::npos) return 0;
+  int line = 1;
+  for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n' ? 1 : 0;
+  return line;
+}
+
+/// A fluid element that is valid on its own (a 2x2x2 box fill).
+inline std::string validFluid(std::string_view name) {
+  return "<Fluid><Name>" + std::string(name) +
+         "</Name><Fill><Shape>box</Shape><Max>2 2 2</Max></Fill></Fluid>\n";
+}
+
+/// "<Scene version="1">" + body + "</Scene>", each on its own lines.
+inline std::string sceneWith(std::string_view body) {
+  return "<Scene version=\"1\">\n" + std::string(body) + "\n</Scene>\n";
+}
+
+/// Reads text expecting an InputError; fails the test if none comes.
+inline InputError readError(std::string_view text, const ReadOptions& options = {}) {
+  try {
+    (void)readSceneText(text, "t.scene", options);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return InputError({}, "none");
+}
+
+}  // namespace softsub::scene::testing
