@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds softsub and its tests with warnings as errors, and runs
+# the whole suite with CTest.
+#   scripts/test.sh             Release build in build-test/
+#   scripts/test.sh --sanitize  AddressSanitizer + UBSan build (RelWithDebInfo) in build-asan/
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+mode=${1:-}
+case "$mode" in
+  "") dir=build-test; config=(-DCMAKE_BUILD_TYPE=Release) ;;
+  --sanitize) dir=build-asan; config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSUB_SANITIZE=ON) ;;
+  *) echo "usage: $0 [--sanitize]" >&2; exit 2 ;;
+esac
+# The benchmarks are built too (not run) so that they cannot rot unnoticed.
+if [[ -f bench/CMakeLists.txt && -z "$mode" ]]; then config+=(-DSOFTSUB_BUILD_BENCH=ON); fi
+
+./scripts/install-deps.sh
+cmake -S . -B "$dir" -G Ninja -DSOFTSUB_BUILD_TESTS=ON -DSOFTSUB_WERROR=ON "${config[@]}"
+cmake --build "$dir" -j2
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir "$dir" --output-on-failure -j2
