@@ -73,9 +73,11 @@ struct FieldInfo {
 /// A field of the description struct S: its info plus how to read and write it.
 template <class S>
 struct Field : FieldInfo {
-  Value (*get)(const S&) = nullptr;  ///< the field's value in s
-  void (*set)(S&, Value&&) = nullptr;  ///< stores a value; null for derived fields
-                                      ///< (written, checked by the reader, not stored)
+  /// The field's value in an S.
+  Value (*get)(const S&) = nullptr;
+  /// Stores a value into an S; null for a derived field (NumberOfParticles), which the
+  /// writer writes from get() and the reader only checks.
+  void (*set)(S&, Value&&) = nullptr;
 
   /// The default: the value in a default-constructed S.
   [[nodiscard]] Value defaultValue() const { return get(S{}); }
