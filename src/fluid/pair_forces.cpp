@@ -8,35 +8,21 @@ namespace softsub::fluid {
 
 namespace {
 
-// Why this shape: most candidates of a cell stencil are out of range, and the ranges
-// of one cell's neighbours are short. So per cell the candidate particles (own cell
-// first, then the forward neighbour cells) are copied once into a contiguous buffer;
-// per particle, one long loop computes squared distances over it (vectorised), a
-// compaction keeps the in-range ones, and only those pay for the sqrt, the table
-// lookup and the scatter to j.
+// Why a pair list: most candidates of a cell stencil are out of range, and sorting
+// plus filtering them costs as much as the forces. The list keeps the pairs within
+// cutoff + skin and serves several substeps. To build it, per cell the candidates (own
+// cell first, then the forward neighbour cells) are copied into a contiguous buffer;
+// per particle one loop computes squared distances over it (vectorised) and a
+// branch-free compaction keeps the partners.
 struct CellScratch {
-  std::vector<float> x, y, z, r2, r2Kept;
+  std::vector<float> x, y, z, r2;
   std::vector<std::uint32_t> slot, kept;
   void resize(std::size_t n) {
     if (x.size() >= n) return;
-    for (auto* v : {&x, &y, &z, &r2, &r2Kept}) v->resize(n);
+    for (auto* v : {&x, &y, &z, &r2}) v->resize(n);
     slot.resize(n);
     kept.resize(n);
   }
-};
-
-struct Arrays {
-  const float* __restrict px;
-  const float* __restrict py;
-  const float* __restrict pz;
-  const float* __restrict vx;
-  const float* __restrict vy;
-  const float* __restrict vz;
-  float* __restrict fx;
-  float* __restrict fy;
-  float* __restrict fz;
-  const std::uint16_t* __restrict mat;
-  const float* __restrict samples;
 };
 
 // Squared distances from (xi, yi, zi) to buffer entries [from, len), kept if < cut2.
@@ -51,58 +37,30 @@ inline std::uint32_t filter(CellScratch& sc, std::uint32_t from, std::uint32_t l
     r2[k] = dx * dx + dy * dy + dz * dz;
   }
   std::uint32_t* __restrict kept = sc.kept.data();
-  float* __restrict r2Kept = sc.r2Kept.data();
   const std::uint32_t* __restrict slot = sc.slot.data();
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
     kept[n] = slot[k];
-    r2Kept[n] = r2[k];
     n += r2[k] < cut2 ? 1u : 0u;
   }
   return n;
 }
 
-// The whole interaction model, one formula for every pair kind.
-inline void interact(const Arrays& a, const CellScratch& sc, std::uint32_t n, const forces::PairEntry* row,
-                     float xi, float yi, float zi, float uxi, float uyi, float uzi, float& ax, float& ay,
-                     float& az) {
-  const std::uint32_t* __restrict kept = sc.kept.data();
-  const float* __restrict r2Kept = sc.r2Kept.data();
-  for (std::uint32_t q = 0; q < n; ++q) {
-    const std::uint32_t j = kept[q];
-    const float r2 = r2Kept[q];
-    const forces::PairEntry& e = row[a.mat[j]];
-    if (!(r2 < e.cutoff2)) continue;  // only with mixed cutoffs in one row
-    const float r = std::sqrt(r2);
-    // Coincident particles have no direction: only the velocity terms act.
-    const float inv = r > 0 ? 1.0f / r : 0.0f;
-    const float t = r * e.invDr;
-    const std::uint32_t k = std::min(static_cast<std::uint32_t>(t), e.lastPiece);
-    const float* piece = a.samples + e.offset + 2 * k;
-    const float f = piece[0] + piece[1] * (t - static_cast<float>(k));
-    const float nx = (a.px[j] - xi) * inv, ny = (a.py[j] - yi) * inv, nz = (a.pz[j] - zi) * inv;
-    const float dvx = a.vx[j] - uxi, dvy = a.vy[j] - uyi, dvz = a.vz[j] - uzi;
-    const float vn = dvx * nx + dvy * ny + dvz * nz;
-    const float along = -f + e.relativeVelocity * vn;
-    const float gx = along * nx + e.damping * dvx;
-    const float gy = along * ny + e.damping * dvy;
-    const float gz = along * nz + e.damping * dvz;
-    ax += gx; ay += gy; az += gz;
-    a.fx[j] -= gx; a.fy[j] -= gy; a.fz[j] -= gz;
-  }
-}
-
 }  // namespace
 
-void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
-                          ParticleStore& s) {
-  const std::size_t m = table.materials();
-  const forces::PairEntry* entries = table.entries().data();
-  const Arrays a{s.px.data(), s.py.data(), s.pz.data(), s.vx.data(), s.vy.data(), s.vz.data(),
-                 s.fx.data(), s.fy.data(), s.fz.data(), s.material.data(), table.samples().data()};
-  // Reused across calls (and grown only when a denser cell neighbourhood appears).
+void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+                     const ParticleStore& s, float skin) {
+  const std::size_t n = s.size();
+  offsets_.resize(n + 1);
+  partners_.clear();
+  // Reused across calls (and grown only when a denser neighbourhood appears).
   static thread_local CellScratch sc;
-
+  static thread_local std::vector<float> rowCut2;
+  rowCut2.resize(table.materials());
+  for (std::size_t a = 0; a < rowCut2.size(); ++a) {
+    const float rc = std::sqrt(table.rowCutoff2(a)) + skin;
+    rowCut2[a] = rc * rc;
+  }
   const std::size_t cells = grid.cellCount();
   for (std::size_t c = 0; c < cells; ++c) {
     const neighbors::SlotRange own = grid.cell(c);
@@ -113,22 +71,74 @@ void accumulatePairForces(const neighbors::CellGrid& grid, const forces::Interac
     std::uint32_t k = 0;
     auto append = [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t j = b; j < e; ++j, ++k) {
-        sc.x[k] = a.px[j]; sc.y[k] = a.py[j]; sc.z[k] = a.pz[j]; sc.slot[k] = j;
+        sc.x[k] = s.px[j]; sc.y[k] = s.py[j]; sc.z[k] = s.pz[j]; sc.slot[k] = j;
       }
     };
     append(own.begin, own.end);
     for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
-
+    // Cells come in slot order, so offsets fill in order too.
     for (std::uint32_t i = own.begin; i < own.end; ++i) {
-      const forces::PairEntry* row = entries + a.mat[i] * m;
-      const float xi = a.px[i], yi = a.py[i], zi = a.pz[i];
-      // Own-cell partners after i, then every forward cell: each pair once.
-      const std::uint32_t n = filter(sc, i - own.begin + 1, len, xi, yi, zi, table.rowCutoff2(a.mat[i]));
-      float ax = 0, ay = 0, az = 0;
-      interact(a, sc, n, row, xi, yi, zi, a.vx[i], a.vy[i], a.vz[i], ax, ay, az);
-      a.fx[i] += ax; a.fy[i] += ay; a.fz[i] += az;
+      offsets_[i] = static_cast<std::uint32_t>(partners_.size());
+      const std::uint32_t kept =
+          filter(sc, i - own.begin + 1, len, s.px[i], s.py[i], s.pz[i], rowCut2[s.material[i]]);
+      partners_.insert(partners_.end(), sc.kept.begin(), sc.kept.begin() + kept);
     }
   }
+  offsets_[n] = static_cast<std::uint32_t>(partners_.size());
+}
+
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
+  const std::size_t m = table.materials();
+  const forces::PairEntry* entries = table.entries().data();
+  const float* __restrict samples = table.samples().data();
+  const float* __restrict px = s.px.data();
+  const float* __restrict py = s.py.data();
+  const float* __restrict pz = s.pz.data();
+  const float* __restrict vx = s.vx.data();
+  const float* __restrict vy = s.vy.data();
+  const float* __restrict vz = s.vz.data();
+  float* __restrict fx = s.fx.data();
+  float* __restrict fy = s.fy.data();
+  float* __restrict fz = s.fz.data();
+  const std::uint16_t* __restrict mat = s.material.data();
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const forces::PairEntry* row = entries + mat[i] * m;
+    const float xi = px[i], yi = py[i], zi = pz[i];
+    const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
+    float ax = 0, ay = 0, az = 0;
+    // The whole interaction model, one formula for every pair kind.
+    for (const std::uint32_t j : list.partners(i)) {
+      const float dx = px[j] - xi, dy = py[j] - yi, dz = pz[j] - zi;
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const forces::PairEntry& e = row[mat[j]];
+      if (!(r2 < e.cutoff2)) continue;  // listed within the skin, not in range now
+      const float r = std::sqrt(r2);
+      // Coincident particles have no direction: only the velocity terms act.
+      const float inv = r > 0 ? 1.0f / r : 0.0f;
+      const float t = r * e.invDr;
+      const std::uint32_t k = std::min(static_cast<std::uint32_t>(t), e.lastPiece);
+      const float* piece = samples + e.offset + 2 * k;
+      const float f = piece[0] + piece[1] * (t - static_cast<float>(k));
+      const float nx = dx * inv, ny = dy * inv, nz = dz * inv;
+      const float dvx = vx[j] - uxi, dvy = vy[j] - uyi, dvz = vz[j] - uzi;
+      const float vn = dvx * nx + dvy * ny + dvz * nz;
+      const float along = -f + e.relativeVelocity * vn;
+      const float gx = along * nx + e.damping * dvx;
+      const float gy = along * ny + e.damping * dvy;
+      const float gz = along * nz + e.damping * dvz;
+      ax += gx; ay += gy; az += gz;
+      fx[j] -= gx; fy[j] -= gy; fz[j] -= gz;
+    }
+    fx[i] += ax; fy[i] += ay; fz[i] += az;
+  }
+}
+
+void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+                          ParticleStore& s) {
+  PairList list;
+  list.build(grid, table, s, 0.0f);
+  accumulatePairForces(list, table, s);
 }
 
 void referencePairForces(const forces::InteractionTable& table, const ParticleStore& s,

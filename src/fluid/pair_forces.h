@@ -1,17 +1,52 @@
 #pragma once
 /// The pair kernel: one formula for every pair of particles, whatever their materials.
+#include <cstdint>
+#include <span>
+#include <vector>
+
 #include "core/particle_store.h"
 #include "forces/interaction_table.h"
 #include "neighbors/cell_grid.h"
 
 namespace softsub::fluid {
 
+/// A half pair list (Verlet list): for each slot i, the slots j of every pair within
+/// its cutoff plus a skin, each unordered pair once. Valid while no particle has moved
+/// more than skin/2 since build() and the store has not been reordered.
+class PairList {
+ public:
+  /// Lists every pair closer than (row cutoff + skin) using `grid` (rebuilt on `store`).
+  void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+             const ParticleStore& store, float skin);
+  /// Partners of slot i.
+  [[nodiscard]] std::span<const std::uint32_t> partners(std::size_t i) const {
+    return {partners_.data() + offsets_[i], partners_.data() + offsets_[i + 1]};
+  }
+  /// Number of listed pairs.
+  [[nodiscard]] std::size_t pairCount() const { return partners_.size(); }
+  /// Bytes reserved.
+  [[nodiscard]] std::size_t memoryBytes() const {
+    return offsets_.capacity() * 4 + partners_.capacity() * 4;
+  }
+
+ private:
+  std::vector<std::uint32_t> offsets_;
+  std::vector<std::uint32_t> partners_;
+};
+
+/// Adds to store.f the forces of every listed pair closer than its cutoff (Newton's
+/// third law: what i gets, j gets with the opposite sign):
+///   f_i += -F(r) n + damping (v_j - v_i) + k ((v_j - v_i) . n) n,  n = (x_j - x_i) / r
+/// with F the pair's sampled function (positive = repulsion). No branch on function
+/// kind, no virtual call, no allocation once warmed up.
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table,
+                          ParticleStore& store);
+
 /// Adds to store.f the forces of every pair closer than its cutoff, each pair once
 /// (Newton's third law: what i gets, j gets with the opposite sign):
 ///   f_i += -F(r) n + damping (v_j - v_i) + k ((v_j - v_i) . n) n,  n = (x_j - x_i) / r
-/// with F the pair's sampled function (positive = repulsion). Reads positions and
-/// velocities from `store` (`vx/vy/vz` unless `vel` arrays are given), which must be in
-/// the order `grid` was rebuilt with. No branch on function kind, no allocation.
+/// with F the pair's sampled function. `store` must be in the order `grid` was rebuilt
+/// with. Builds a pair list with no skin (allocates): for tests and one-off use.
 void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                           ParticleStore& store);
 

@@ -52,6 +52,9 @@ struct Model {
   std::vector<FluidInfo> fluids;        ///< entity index = fluid index
   std::vector<MaterialInfo> materials;  ///< material index = fluid index for now
   forces::InteractionTable table;
+  /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
+  /// often (docs/architecture.md, "The pair list").
+  double pairListSkin = 0.2;
 
   /// Seconds per substep.
   [[nodiscard]] double dt() const { return 1.0 / (framesPerSecond * substeps); }

@@ -18,19 +18,44 @@ std::size_t Model::particleCount() const {
 Simulation::Simulation(const Model& model, State state) : model_(model), state_(std::move(state)) {
   const double c = model_.table.maxCutoff();
   cellSize_ = static_cast<float>(c > 0 ? c : 1.0);
+  skin_ = static_cast<float>(model_.pairListSkin) * cellSize_;
 }
 
 double Simulation::time() const {
   return static_cast<double>(state_.frame) / model_.framesPerSecond;
 }
 
+// The list stays valid while no particle has moved half the skin since it was built:
+// two particles then cannot have closed more than the skin, so every pair now within
+// its cutoff is listed.
+bool Simulation::listIsStale() const {
+  if (!listValid_) return true;
+  const ParticleStore& s = state_.particles;
+  const float limit = 0.25f * skin_ * skin_;
+  float worst = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
+    worst = std::max(worst, dx * dx + dy * dy + dz * dz);
+  }
+  return !(worst < limit);  // NaN positions also force a rebuild
+}
+
 void Simulation::computeForces() {
   ParticleStore& s = state_.particles;
-  if (s.size() > 0) grid_.rebuild(s, cellSize_);
+  if (listIsStale()) {
+    // Only here is the store re-sorted: the list holds slots.
+    grid_.rebuild(s, cellSize_ + skin_);
+    list_.build(grid_, model_.table, s, skin_);
+    refX_ = s.px;
+    refY_ = s.py;
+    refZ_ = s.pz;
+    listValid_ = true;
+    ++listBuilds_;
+  }
   std::fill(s.fx.begin(), s.fx.end(), 0.0f);
   std::fill(s.fy.begin(), s.fy.end(), 0.0f);
   std::fill(s.fz.begin(), s.fz.end(), 0.0f);
-  fluid::accumulatePairForces(grid_, model_.table, s);
+  fluid::accumulatePairForces(list_, model_.table, s);
   state_.forcesValid = true;
 }
 
@@ -201,6 +226,7 @@ std::size_t Simulation::memoryBytes() const {
   b += s.material.capacity() * 2 + s.owner.capacity() * 4 + s.id.capacity() * 4;
   // The store's permute scratch is one array of each type.
   b += s.size() * (4 + 4 + 2);
+  b += list_.memoryBytes() + (refX_.capacity() + refY_.capacity() + refZ_.capacity()) * 4;
   return b + grid_.memoryBytes() + slotOfId_.capacity() * 4;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/snapshot.h"
+#include "fluid/pair_forces.h"
 #include "neighbors/cell_grid.h"
 #include "solver/model.h"
 
@@ -35,11 +36,15 @@ class Simulation {
   /// Bytes held by the particle store and the work buffers.
   [[nodiscard]] std::size_t memoryBytes() const;
 
+  /// How many times the grid and pair list were rebuilt (diagnostics, benchmarks).
+  [[nodiscard]] std::int64_t listBuilds() const { return listBuilds_; }
+
   /// Throws BlowUpError naming the first non-finite position/velocity, if any.
   void checkFinite() const;
 
  private:
-  void computeForces();            // stages 2-3: grid, pair forces (+ none external)
+  void computeForces();            // stages 2-3: grid + pair list when stale, pair forces
+  [[nodiscard]] bool listIsStale() const;
   void integrateEuler(bool symplectic);
   void integrateVerletFirstHalf();
   void integrateVerletSecondHalf();
@@ -48,7 +53,12 @@ class Simulation {
   const Model& model_;
   State state_;
   neighbors::CellGrid grid_;
-  float cellSize_ = 1;
+  fluid::PairList list_;
+  float cellSize_ = 1;  // longest cutoff
+  float skin_ = 0;      // pair-list margin beyond the cutoff
+  bool listValid_ = false;
+  std::int64_t listBuilds_ = 0;
+  std::vector<float> refX_, refY_, refZ_;  // positions when the list was built
   mutable std::vector<std::uint32_t> slotOfId_;
 };
 
