@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "fluid/pair_forces.h"
 #include "solver/frame_loop.h"
 #include "solver/simulation.h"
 #include "support/scenarios.h"
@@ -151,6 +152,35 @@ TEST(Simulation, SnapshotIsInStableIdOrderWhateverTheSorting) {
     }
   EXPECT_EQ(snap.frame, 1);
   EXPECT_DOUBLE_EQ(snap.time, t);
+}
+
+TEST(Simulation, PairListNeverMissesAPairWhileParticlesMove) {
+  // Position-only forces and velocity Verlet: after each step the store holds the
+  // forces of the current positions, computed from a pair list that may be several
+  // substeps old. They must equal a brute-force sum over all pairs.
+  Model m = twoFluids();
+  m.integrator = Integrator::VelocityVerlet;
+  m.table = forces::InteractionTable(2);
+  m.table.set(0, 0, {forces::Linear{3, 1.0, 0, 3}, 0, 0});
+  m.table.set(1, 1, {forces::LennardJones{2, 0.9, -1, 20, 1.4}, 0, 0});
+  m.table.set(0, 1, {forces::Linear{5, 1.2, 0, 5}, 0, 0});
+  State s = cloudState(1500, 8, m);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles.vx[i] *= 6.0f;  // fast
+  Simulation sim(m, s);
+  std::vector<double> rx, ry, rz;
+  for (int k = 0; k < 40; ++k) {
+    sim.step();
+    const ParticleStore& p = sim.state().particles;
+    fluid::referencePairForces(m.table, p, rx, ry, rz);
+    double worst = 0, scale = 1;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      worst = std::max(worst, std::abs(p.fx[i] - rx[i]) + std::abs(p.fy[i] - ry[i]) + std::abs(p.fz[i] - rz[i]));
+      scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
+    }
+    ASSERT_LT(worst, 1e-3 * scale) << "step " << k;
+  }
+  EXPECT_GT(sim.listBuilds(), 2) << "the test must cross list rebuilds";
+  EXPECT_LT(sim.listBuilds(), 40) << "the list must be reused between rebuilds";
 }
 
 TEST(Simulation, WallsKeepEveryParticleInsideTheContainer) {
