@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     printError(e.what());
     return code(ExitCode::IoFailure);
   } catch (const softsub::BlowUpError& e) {
-    printError(std::string("simulation blew up: ") + e.what());
+    printError(e.what());  // names the frame, fluid, particle and a remedy
     return code(ExitCode::BlowUp);
   } catch (const std::bad_alloc&) {
     printError("out of memory");

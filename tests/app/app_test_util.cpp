@@ -1,0 +1,105 @@
+#include "app_test_util.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include "scene/compile.h"
+#include "scene/reader.h"
+
+namespace softsub::apptest {
+
+std::string quote(const fs::path& p) {
+  std::string out = "'";
+  for (char c : p.string()) {
+    if (c == '\'') out += "'\\''";
+    else out += c;
+  }
+  return out + "'";
+}
+
+RunResult runSoftsub(const std::string& args, const fs::path& cwd) {
+  static std::atomic<int> counter{0};
+  const fs::path base = fs::temp_directory_path() /
+                        ("softsub-test-io-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const fs::path outFile = base.string() + ".out";
+  const fs::path errFile = base.string() + ".err";
+  const std::string cmd = "cd " + quote(cwd) + " && " + quote(SOFTSUB_BINARY) + " " + args + " >" +
+                          quote(outFile) + " 2>" + quote(errFile) + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  if (status == -1) throw std::runtime_error("could not run: " + cmd);
+  if (WIFEXITED(status)) r.code = WEXITSTATUS(status);
+  else if (WIFSIGNALED(status)) r.code = 128 + WTERMSIG(status);
+  r.out = readFile(outFile);
+  r.err = readFile(errFile);
+  fs::remove(outFile);
+  fs::remove(errFile);
+  return r;
+}
+
+TempDir::TempDir() {
+  std::string pattern = (fs::temp_directory_path() / "softsub-test-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  path_ = pattern;
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> listFiles(const fs::path& dir) {
+  std::vector<std::string> out;
+  if (!fs::exists(dir)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).generic_string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::string> listEntries(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+fs::path examplesDir() { return fs::path(SOFTSUB_SOURCE_DIR) / "examples"; }
+
+std::vector<fs::path> exampleScenes() {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(examplesDir()))
+    if (e.path().extension() == ".scene") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+fs::path copyInto(const fs::path& from, const fs::path& dir) {
+  const fs::path to = dir / from.filename();
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  return to;
+}
+
+std::vector<std::uint32_t> fluidCounts(const fs::path& scene) {
+  const scene::Compiled c = scene::compile(scene::readSceneFile(scene.string()));
+  std::vector<std::uint32_t> out;
+  for (const auto& f : c.model.fluids) out.push_back(f.count);
+  return out;
+}
+
+}  // namespace softsub::apptest

@@ -1,0 +1,111 @@
+// The command line itself: help, version, usage errors and their exit codes.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "scene/schema.h"
+
+namespace softsub::apptest {
+namespace {
+
+TEST(Cli, HelpOnEveryCommandExitsZero) {
+  TempDir tmp;
+  for (const char* args : {"--help", "-h", "run --help", "info --help", "schema --help"}) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+    EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
+  }
+  const RunResult run = runSoftsub("run --help", tmp.path());
+  for (const char* option : {"--frames", "--substeps", "--out", "--formats", "--integrator", "--quiet",
+                             "--max-particles", "--print-scene", "--record", "--stop-recording-at",
+                             "--draw-per-frame"})
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
+  EXPECT_TRUE(listEntries(tmp.path()).empty());
+}
+
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("--version", tmp.path());
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.rfind("softsub ", 0), 0u) << r.out;
+}
+
+TEST(Cli, BadUsageExitsTwoWithAnErrorLineAndWritesNothing) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const std::string s = quote(scene);
+  const char* cases[] = {
+      "",                                   // no command
+      "bogus",                              // unknown command
+      "run --bogus",                        // unknown option
+      "run --frames abc",                   // not a number
+      "run --frames",                       // missing value
+      "run --substeps 0 ",                  // below the schema's range
+      "run --formats sim,gif",              // unknown format
+      "run --formats none,sim",             // none mixed with others
+      "run --integrator rk4",               // not an integrator
+      "run --max-particles 0",              // not positive
+      "-record 2 -f",                       // record is 0 or 1 (scene appended below)
+      "-stopRecordingAt -2 -f",             // below -1
+      "-updateNum",                         // missing value
+      "info",                               // missing file
+      "schema extra",                       // unexpected argument
+  };
+  for (const char* c : cases) {
+    std::string args = c;
+    if (args.ends_with("-f")) args += " " + s;
+    else if (args.starts_with("run --")) args += " " + s;
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.code, 2) << "softsub " << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << "softsub " << args << "\n" << r.err;
+    EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"}) << args;
+  }
+}
+
+TEST(Cli, TwoScenesAreRefused) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub("run " + quote(scene) + " -f " + quote(scene), tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+}
+
+TEST(Cli, OverrideErrorsNameTheOptionAndTheAllowedRange) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("run --substeps 0 " + quote(examplesDir() / "two-fluids.scene"), tmp.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--substeps"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("allowed"), std::string::npos) << r.err;
+  const RunResult f = runSoftsub("run --formats gif", tmp.path());
+  EXPECT_EQ(f.code, 2);
+  EXPECT_NE(f.err.find("unknown format 'gif'"), std::string::npos) << f.err;
+}
+
+TEST(Cli, MissingSceneFileIsAnIoError) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("run nowhere.scene", tmp.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("nowhere.scene"), std::string::npos) << r.err;
+  EXPECT_TRUE(listEntries(tmp.path()).empty());
+}
+
+TEST(Cli, UnwritableOutputIsAnIoError) {
+  TempDir tmp;
+  { std::ofstream(tmp / "file") << "x"; }
+  const RunResult r = runSoftsub(
+      "run --frames 1 --out " + quote(tmp / "file" / "out") + " " + quote(examplesDir() / "two-fluids.scene"),
+      tmp.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+}
+
+TEST(Cli, SchemaPrintsTheSchemaMarkdown) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("schema", tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, scene::schemaMarkdown());
+  EXPECT_NE(r.out.find("Fluid"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace softsub::apptest

@@ -1,0 +1,109 @@
+// Stopping a run: Ctrl-C / SIGTERM finish the current frame (exit 130), and a blow-up
+// stops with exit 4, the earlier frames intact.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/sim_format.h"
+
+extern char** environ;
+
+namespace softsub::apptest {
+namespace {
+
+/// Starts softsub with `args` in the background, stderr to `errFile`; returns its pid.
+pid_t spawnSoftsub(const std::vector<std::string>& args, const fs::path& errFile) {
+  std::vector<std::string> all{SOFTSUB_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
+}
+
+class Interrupt : public ::testing::TestWithParam<int> {};
+
+TEST_P(Interrupt, FinishesTheCurrentFrameAndExits130) {
+  const int sig = GetParam();
+  TempDir tmp;
+  const fs::path out = tmp / "o";
+  const pid_t pid = spawnSoftsub({"run", "--frames", "100000", "--formats", "sim,pdc", "--out", out.string(),
+                                  (examplesDir() / "jelly-block.scene").string()},
+                                 tmp / "err");
+  ASSERT_GT(pid, 0);
+  // Wait until a few frames are out, so the signal lands in the middle of the run.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(out / "jelly-block.0003.sim") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+
+  const std::string err = readFile(tmp / "err");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(err, m, std::regex("frame ([0-9]+) is the last complete frame"))) << err;
+  EXPECT_NE(err.find(sig == SIGINT ? "SIGINT" : "SIGTERM"), std::string::npos) << err;
+  const int last = std::stoi(m[1]);
+  EXPECT_GE(last, 3);
+  // Frames 0..last are complete and readable; nothing after them, no temporary files.
+  std::vector<std::string> expected;
+  for (int f = 0; f <= last; ++f) {
+    expected.push_back(fmt::format("jelly-block.{:04}.sim", f));
+    expected.push_back(fmt::format("pdc/jellyShape.{}.pdc", f * 250));
+  }
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(listFiles(out), expected);
+  EXPECT_EQ(cache::readSimFile(out / fmt::format("jelly-block.{:04}.sim", last)).frame.frame, last);
+}
+
+std::string signalName(const ::testing::TestParamInfo<int>& p) {
+  return p.param == SIGINT ? "SIGINT" : "SIGTERM";
+}
+
+INSTANTIATE_TEST_SUITE_P(App, Interrupt, ::testing::Values(SIGINT, SIGTERM), signalName);
+
+TEST(BlowUp, ExitsFourNamingTheFrameAndKeepsEarlierFrames) {
+  TempDir tmp;
+  // A repulsion far beyond single precision: the first step produces a non-finite value.
+  std::ofstream(tmp / "blow.scene") << R"(<Scene version="1">
+  <Simulation><Frames>5</Frames></Simulation>
+  <Fluid><Name>unstable</Name><NumberOfParticles>2</NumberOfParticles><Particles>0 0 0  0.5 0 0</Particles></Fluid>
+  <Interactions>
+    <Pair><A>unstable</A><B>unstable</B>
+      <Linear><AtZero>1e300</AtZero><Cutoff>1</Cutoff><Min>0</Min><Max>1e300</Max></Linear></Pair>
+  </Interactions>
+</Scene>
+)";
+  const RunResult r = runSoftsub("run blow.scene --formats sim", tmp.path());
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("frame 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unstable"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("frames 0..0 are complete"), std::string::npos) << r.err;
+  EXPECT_EQ(listFiles(tmp / "blowSim"), std::vector<std::string>{"blow.0000.sim"});
+}
+
+}  // namespace
+}  // namespace softsub::apptest

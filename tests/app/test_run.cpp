@@ -1,0 +1,215 @@
+// `softsub run` end to end: the files it writes, what they hold, determinism, formats,
+// the seed's flags, and what it reports.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/sim_format.h"
+#include "scene/reader.h"
+
+namespace softsub::apptest {
+namespace {
+
+/// The files a run of `stem` with fluids `fluids` writes for frames 0..last at 24 fps.
+std::vector<std::string> expectedFiles(const std::string& stem, const std::vector<std::string>& fluids,
+                                       int last, bool sim = true, bool pdc = true, bool ply = true) {
+  std::vector<std::string> out;
+  for (int f = 0; f <= last; ++f) {
+    if (sim) out.push_back(fmt::format("{}.{:04}.sim", stem, f));
+    if (ply) out.push_back(fmt::format("ply/{}.{:04}.ply", stem, f));
+    if (pdc)
+      for (const std::string& fluid : fluids) out.push_back(fmt::format("pdc/{}Shape.{}.pdc", fluid, f * 250));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::string> fluidNames(const fs::path& scene) {
+  std::vector<std::string> out;
+  for (const auto& f : scene::readSceneFile(scene.string()).fluids) out.push_back(f.name);
+  return out;
+}
+
+/// Every file of `a` equals the same file of `b`, byte for byte, and they list the same files.
+void expectSameFiles(const fs::path& a, const fs::path& b) {
+  const auto files = listFiles(a);
+  ASSERT_EQ(files, listFiles(b));
+  ASSERT_FALSE(files.empty());
+  for (const std::string& f : files) EXPECT_TRUE(readFile(a / f) == readFile(b / f)) << f << " differs";
+}
+
+class Examples : public ::testing::TestWithParam<std::string> {};
+
+std::string exampleTestName(const ::testing::TestParamInfo<std::string>& p) {
+  std::string n = fs::path(p.param).stem().string();
+  std::replace(n.begin(), n.end(), '-', '_');
+  return n;
+}
+
+TEST_P(Examples, ThreeFramesWriteEveryFormatAndReadBack) {
+  const fs::path scene = examplesDir() / GetParam();
+  TempDir tmp;
+  const fs::path out = tmp / "out";
+  const RunResult r = runSoftsub("run --frames 3 --out " + quote(out) + " " + quote(scene), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string stem = scene.stem().string();
+  EXPECT_EQ(listFiles(out), expectedFiles(stem, fluidNames(scene), 3));
+  const auto counts = fluidCounts(scene);
+  for (int f = 0; f <= 3; ++f) {
+    const cache::SimFile sim = cache::readSimFile(out / fmt::format("{}.{:04}.sim", stem, f));
+    EXPECT_EQ(sim.frame.frame, f);
+    EXPECT_NEAR(sim.frame.time, f / 24.0, 1e-9);
+    ASSERT_EQ(sim.frame.fluids.size(), counts.size());
+    for (std::size_t k = 0; k < counts.size(); ++k) EXPECT_EQ(sim.frame.fluids[k].count(), counts[k]);
+  }
+  // Only --out was written: nothing beside the scene, nothing in the working folder.
+  EXPECT_FALSE(fs::exists(scene.parent_path() / (stem + "Sim")));
+  EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"out"});
+}
+
+TEST_P(Examples, RerunGivesByteIdenticalFiles) {
+  const fs::path scene = examplesDir() / GetParam();
+  TempDir tmp;
+  for (const char* dir : {"a", "b"}) {
+    const RunResult r = runSoftsub("run -q --frames 3 --out " + quote(tmp / dir) + " " + quote(scene), tmp.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  expectSameFiles(tmp / "a", tmp / "b");
+}
+
+INSTANTIATE_TEST_SUITE_P(App, Examples,
+                         ::testing::Values("softsub-demo.scene", "honey-drop.scene", "two-fluids.scene",
+                                           "jelly-block.scene"),
+                         exampleTestName);
+
+TEST(Run, EveryExampleIsCovered) {
+  EXPECT_GE(exampleScenes().size(), 4u);
+  for (const fs::path& p : exampleScenes()) {
+    TempDir tmp;
+    const RunResult r = runSoftsub("run -q --frames 1 --formats sim --out " + quote(tmp / "o") + " " + quote(p),
+                                   tmp.path());
+    EXPECT_EQ(r.code, 0) << p << "\n" << r.err;
+    EXPECT_EQ(listFiles(tmp / "o").size(), 2u) << p;
+  }
+}
+
+TEST(Run, DefaultOutputFolderIsBesideTheScene) {
+  TempDir tmp;
+  fs::create_directory(tmp / "work");
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub("run -q --frames 2 " + quote(scene), tmp / "work");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
+  EXPECT_TRUE(listEntries(tmp / "work").empty());
+}
+
+TEST(Run, FormatsSimWritesOnlySimFiles) {
+  TempDir tmp;
+  const RunResult r = runSoftsub(
+      "run -q --frames 2 --formats sim --out " + quote(tmp / "o") + " " + quote(examplesDir() / "two-fluids.scene"),
+      tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "o"), expectedFiles("two-fluids", {}, 2, true, false, false));
+  EXPECT_EQ(listEntries(tmp / "o").size(), 3u);  // no pdc/ or ply/ folder either
+}
+
+TEST(Run, FormatsPdcPlyAndNone) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "two-fluids.scene";
+  ASSERT_EQ(runSoftsub("run -q --frames 1 --formats pdc,ply --out " + quote(tmp / "o") + " " + quote(scene),
+                       tmp.path()).code, 0);
+  EXPECT_EQ(listFiles(tmp / "o"), expectedFiles("two-fluids", {"syrup", "oil"}, 1, false, true, true));
+  const RunResult none =
+      runSoftsub("run --frames 1 --formats none --out " + quote(tmp / "n") + " " + quote(scene), tmp.path());
+  EXPECT_EQ(none.code, 0) << none.err;
+  EXPECT_FALSE(fs::exists(tmp / "n"));
+  EXPECT_NE(none.err.find("nothing written"), std::string::npos) << none.err;
+}
+
+TEST(Run, OverridesChangeTheRun) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "two-fluids.scene";
+  const std::string base = "run -q --frames 2 --formats sim ";
+  for (const char* v : {"explicit-euler", "symplectic-euler", "velocity-verlet"})
+    ASSERT_EQ(runSoftsub(base + "--integrator " + v + " --out " + quote(tmp / v) + " " + quote(scene),
+                         tmp.path()).code, 0) << v;
+  ASSERT_EQ(runSoftsub(base + "--substeps 3 --out " + quote(tmp / "s3") + " " + quote(scene), tmp.path()).code, 0);
+  const std::string last = "two-fluids.0002.sim";
+  EXPECT_NE(readFile(tmp / "explicit-euler" / last), readFile(tmp / "velocity-verlet" / last));
+  EXPECT_NE(readFile(tmp / "symplectic-euler" / last), readFile(tmp / "s3" / last));
+}
+
+TEST(Run, SeedFlagsBehaveAsDocumented) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  // -f, -updateNum 2, -record 1, -stopRecordingAt 2: frames 0..2 beside the scene, the run ends at 2.
+  const RunResult seed =
+      runSoftsub("-f " + quote(scene) + " -updateNum 2 -record 1 -stopRecordingAt 2", tmp.path());
+  ASSERT_EQ(seed.code, 0) << seed.err;
+  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
+  EXPECT_NE(seed.err.find("done: 2 frames"), std::string::npos) << seed.err;
+  // The same run spelled with softsub's own options gives the same bytes.
+  const RunResult own =
+      runSoftsub("run -q --substeps 2 --frames 2 --out " + quote(tmp / "ref") + " " + quote(scene), tmp.path());
+  ASSERT_EQ(own.code, 0) << own.err;
+  expectSameFiles(tmp / "two-fluidsSim", tmp / "ref");
+}
+
+TEST(Run, SeedRecordZeroWritesNothing) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub("-f " + quote(scene) + " -record 0 --frames 1", tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"});
+}
+
+TEST(Run, SeedStopRecordingAtMinusOneAndDrawPerFrame) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub(
+      "-f " + quote(scene) + " -stopRecordingAt -1 -drawPerFrame 1 --frames 1 --formats sim", tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("-drawPerFrame"), std::string::npos) << r.err;
+  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {}, 1, true, false, false));
+}
+
+TEST(Run, StopRecordingAtBeyondTheLastFrameRunsTheScene) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("run -q --frames 2 --stop-recording-at 10 --formats sim --out " +
+                                     quote(tmp / "o") + " " + quote(examplesDir() / "two-fluids.scene"),
+                                 tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "o").size(), 3u);
+}
+
+TEST(Run, SummaryWhenNotATerminalAndSilenceWhenQuiet) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "two-fluids.scene";
+  const RunResult loud =
+      runSoftsub("run --frames 2 --formats sim --out " + quote(tmp / "o") + " " + quote(scene), tmp.path());
+  ASSERT_EQ(loud.code, 0);
+  EXPECT_TRUE(loud.out.empty()) << loud.out;
+  // One line: frames, particles, seconds, ms/frame, output folder; no progress redraws.
+  EXPECT_EQ(loud.err.find('\r'), std::string::npos);
+  EXPECT_EQ(std::count(loud.err.begin(), loud.err.end(), '\n'), 1) << loud.err;
+  for (const std::string& part : {std::string("2 frames"), std::string("1,728 particles"), std::string(" s ("),
+                                 std::string("ms/frame"), (tmp / "o").string() + "/"})
+    EXPECT_NE(loud.err.find(part), std::string::npos) << part << " not in " << loud.err;
+  const RunResult quiet =
+      runSoftsub("run --quiet --frames 2 --formats sim --out " + quote(tmp / "q") + " " + quote(scene), tmp.path());
+  ASSERT_EQ(quiet.code, 0);
+  EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+  EXPECT_TRUE(quiet.out.empty()) << quiet.out;
+}
+
+TEST(Run, ZeroFramesWritesTheInitialState) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("run -q --frames 0 --formats sim --out " + quote(tmp / "o") + " " +
+                                     quote(examplesDir() / "jelly-block.scene"),
+                                 tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "o"), std::vector<std::string>{"jelly-block.0000.sim"});
+}
+
+}  // namespace
+}  // namespace softsub::apptest

@@ -1,0 +1,49 @@
+// The seed's single-dash flags, rewritten before CLI11 parses the line.
+#include <gtest/gtest.h>
+
+#include "seed_flags.h"
+
+namespace softsub::app {
+namespace {
+
+std::vector<std::string> rewrite(std::vector<std::string> args) {
+  args.insert(args.begin(), "softsub");
+  auto out = rewriteSeedFlags(args);
+  out.erase(out.begin());
+  return out;
+}
+
+using Args = std::vector<std::string>;
+
+TEST(SeedFlags, MapsToLongOptionsAndImpliesRun) {
+  EXPECT_EQ(rewrite({"-f", "a.scene", "-updateNum", "2", "-record", "1", "-stopRecordingAt", "5",
+                     "-drawPerFrame", "1"}),
+            (Args{"run", "-f", "a.scene", "--substeps=2", "--record=1", "--stop-recording-at=5",
+                  "--draw-per-frame=1"}));
+}
+
+TEST(SeedFlags, JoinsNegativeValues) {
+  EXPECT_EQ(rewrite({"-f", "a.scene", "-stopRecordingAt", "-1"}),
+            (Args{"run", "-f", "a.scene", "--stop-recording-at=-1"}));
+  EXPECT_EQ(rewrite({"-stopRecordingAt=-1"}), (Args{"run", "--stop-recording-at=-1"}));
+}
+
+TEST(SeedFlags, KeepsAnExplicitSubcommand) {
+  EXPECT_EQ(rewrite({"run", "-f", "a.scene", "-record", "0"}),
+            (Args{"run", "-f", "a.scene", "--record=0"}));
+  EXPECT_EQ(rewrite({"run", "a.scene", "--frames", "3"}), (Args{"run", "a.scene", "--frames", "3"}));
+}
+
+TEST(SeedFlags, LeavesOtherLinesAlone) {
+  EXPECT_EQ(rewrite({}), Args{});
+  EXPECT_EQ(rewrite({"--help"}), Args{"--help"});
+  EXPECT_EQ(rewrite({"info", "x.sim"}), (Args{"info", "x.sim"}));
+  EXPECT_EQ(rewrite({"run", "--", "-record"}), (Args{"run", "--", "-record"}));
+}
+
+TEST(SeedFlags, MissingValueIsLeftForTheParserToReport) {
+  EXPECT_EQ(rewrite({"-updateNum"}), (Args{"run", "--substeps"}));
+}
+
+}  // namespace
+}  // namespace softsub::app
