@@ -12,7 +12,8 @@ namespace softsub::app {
 
 CLI::App* addInfoCommand(CLI::App& root, InfoOptions& o) {
   CLI::App* info = root.add_subcommand("info", "Summarise a .scene, .sim, .pdc or .ply file");
-  info->add_option("file", o.file, "The file (its extension says what it is)")->required();
+  info->add_option("FILE", o.file, "A .scene, .sim, .pdc or .ply file (the extension says which)")
+      ->required();
   return info;
 }
 

@@ -82,7 +82,7 @@ std::string folderText(const std::filesystem::path& dir) {
 CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   CLI::App* run = root.add_subcommand(
       "run", "Simulate a scene into frame caches (the embedded default scene when SCENE is omitted)");
-  run->add_option("scene,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)");
+  run->add_option("SCENE,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)");
   run->add_option("--frames", o.frames, "Frames to simulate (overrides <Simulation><Frames>)");
   run->add_option("--substeps", o.substeps,
                   "Updates per frame (overrides <Simulation><Substeps>; seed: -updateNum N)");

@@ -25,7 +25,8 @@ void printError(const std::string& message) { fmt::print(stderr, "error: {}\n", 
 
 int runApp(int argc, char** argv) {
   namespace app = softsub::app;
-  CLI::App root{"softsub: soft and viscous substances from particles, simulated into frame caches"};
+  CLI::App root{"softsub: soft and viscous substances from particles, simulated into frame caches",
+                "softsub"};
   root.set_version_flag("--version", std::string("softsub ") + SOFTSUB_VERSION);
   root.require_subcommand(1);
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
