@@ -1,0 +1,144 @@
+// The examples do what their comments promise, over their full length: nothing blows
+// up or leaves the container, honey spreads and settles, the two fluids stay apart
+// with the light one on top, the jelly keeps its shape. Bounds are generous: they
+// catch a broken scene or solver, not a small change of numbers.
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/sim_format.h"
+#include "scene/reader.h"
+
+namespace softsub::apptest {
+namespace {
+
+/// Bounds and mean position of one fluid at one frame.
+struct Stats {
+  double lo[3] = {1e300, 1e300, 1e300};
+  double hi[3] = {-1e300, -1e300, -1e300};
+  double mean[3] = {0, 0, 0};
+  std::vector<float> positions;
+  [[nodiscard]] double extent(int axis) const { return hi[axis] - lo[axis]; }
+};
+
+Stats stats(const FluidSnapshot& f) {
+  Stats s;
+  s.positions = f.positions;
+  for (std::size_t k = 0; k < f.count(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      const double v = f.positions[3 * k + a];
+      s.lo[a] = std::min(s.lo[a], v);
+      s.hi[a] = std::max(s.hi[a], v);
+      s.mean[a] += v / static_cast<double>(f.count());
+    }
+  return s;
+}
+
+/// Runs a whole example (sim files only) and returns the frames it wrote.
+class FullRun {
+ public:
+  explicit FullRun(const std::string& name) : scene_(examplesDir() / (name + ".scene")), name_(name) {
+    const RunResult r = runSoftsub("run -q --formats sim --out " + quote(tmp_ / "o") + " " + quote(scene_),
+                                   tmp_.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    desc_ = scene::readSceneFile(scene_.string());
+  }
+  [[nodiscard]] int lastFrame() const { return desc_.simulation.frames; }
+  [[nodiscard]] std::vector<Stats> frame(int f) const {
+    const cache::SimFile sim = cache::readSimFile(tmp_ / "o" / fmt::format("{}.{:04}.sim", name_, f));
+    std::vector<Stats> out;
+    for (const FluidSnapshot& fluid : sim.frame.fluids) out.push_back(stats(fluid));
+    return out;
+  }
+  /// Every particle of the last frame is inside the container (walls keep centres a radius in).
+  void expectInsideContainer() const {
+    ASSERT_TRUE(desc_.environment.has_value());
+    const auto& e = *desc_.environment;
+    const double lo[3] = {-e.width / 2, 0, -e.depth / 2};
+    const double hi[3] = {e.width / 2, e.height + 100, e.depth / 2};  // open top: may splash up
+    for (const Stats& s : frame(lastFrame()))
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_GE(s.lo[a], lo[a] - 1e-3) << name_ << " axis " << a;
+        EXPECT_LE(s.hi[a], hi[a] + 1e-3) << name_ << " axis " << a;
+      }
+  }
+  /// Mean distance a particle moved over the last frame.
+  [[nodiscard]] double lastFrameMotion(std::size_t fluid) const {
+    const Stats a = frame(lastFrame() - 1)[fluid];
+    const Stats b = frame(lastFrame())[fluid];
+    double sum = 0;
+    const std::size_t n = a.positions.size() / 3;
+    for (std::size_t k = 0; k < n; ++k)
+      sum += std::hypot(b.positions[3 * k] - a.positions[3 * k], b.positions[3 * k + 1] - a.positions[3 * k + 1],
+                        b.positions[3 * k + 2] - a.positions[3 * k + 2]);
+    return sum / static_cast<double>(n);
+  }
+
+ private:
+  TempDir tmp_;
+  fs::path scene_;
+  std::string name_;
+  scene::SceneDesc desc_;
+};
+
+TEST(ExamplePhysics, HoneyDropSpreadsAndSettles) {
+  const FullRun run("honey-drop");
+  run.expectInsideContainer();
+  const Stats start = run.frame(0)[0];
+  const Stats end = run.frame(run.lastFrame())[0];
+  EXPECT_LT(end.mean[1], 0.4 * start.mean[1]);     // it came down
+  EXPECT_GT(end.extent(0), 1.4 * start.extent(0));  // and flowed out sideways
+  EXPECT_GT(end.extent(2), 1.4 * start.extent(2));
+  EXPECT_LT(end.extent(1), start.extent(1));        // a puddle, flatter than the ball
+  EXPECT_LT(run.lastFrameMotion(0), 0.1);           // slowly creeping, not splashing
+}
+
+TEST(ExamplePhysics, TwoFluidsStaySeparatedWithTheLightOneOnTop) {
+  const FullRun run("two-fluids");
+  run.expectInsideContainer();
+  const std::vector<Stats> end = run.frame(run.lastFrame());
+  ASSERT_EQ(end.size(), 2u);
+  const Stats& syrup = end[0];
+  const Stats& oil = end[1];
+  EXPECT_GT(oil.mean[1], syrup.mean[1] + 2.0);
+  // Hardly any oil particle below the syrup's mean height: they did not mix.
+  std::size_t below = 0;
+  for (std::size_t k = 1; k < oil.positions.size(); k += 3) below += oil.positions[k] < syrup.mean[1] ? 1 : 0;
+  EXPECT_LT(below, oil.positions.size() / 3 / 20);
+  EXPECT_LT(run.lastFrameMotion(0), 0.1);
+  EXPECT_LT(run.lastFrameMotion(1), 0.1);
+}
+
+TEST(ExamplePhysics, JellyBlockKeepsItsShape) {
+  const FullRun run("jelly-block");
+  run.expectInsideContainer();
+  const Stats start = run.frame(0)[0];
+  const Stats end = run.frame(run.lastFrame())[0];
+  EXPECT_LT(end.lo[1], 0.6);  // it landed
+  for (int a : {0, 2}) {
+    EXPECT_GT(end.extent(a), 0.8 * start.extent(a)) << a;
+    EXPECT_LT(end.extent(a), 1.2 * start.extent(a)) << a;
+  }
+  EXPECT_GT(end.extent(1), 0.7 * start.extent(1));
+  EXPECT_LT(end.extent(1), 1.1 * start.extent(1));
+  EXPECT_LT(run.lastFrameMotion(0), 0.05);
+}
+
+TEST(ExamplePhysics, DemoWaterRunsWhileHoneyHoldsTogether) {
+  const FullRun run("softsub-demo");
+  run.expectInsideContainer();
+  const std::vector<Stats> start = run.frame(0);
+  const std::vector<Stats> end = run.frame(run.lastFrame());
+  ASSERT_EQ(end.size(), 2u);
+  // Both came down to the floor; the runny water spread far more than the honey.
+  EXPECT_LT(end[0].mean[1], 0.5 * start[0].mean[1]);
+  EXPECT_LT(end[1].mean[1], 0.5 * start[1].mean[1]);
+  const double honeyGrowth = end[0].extent(0) / start[0].extent(0);
+  const double waterGrowth = end[1].extent(0) / start[1].extent(0);
+  EXPECT_GT(waterGrowth - 1, 2 * (honeyGrowth - 1)) << honeyGrowth << " " << waterGrowth;
+}
+
+}  // namespace
+}  // namespace softsub::apptest
