@@ -4,6 +4,8 @@
 // Run: build-bench/bench/softsub-bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "solver/simulation.h"
 #include "support/scenarios.h"
 
@@ -11,23 +13,40 @@ namespace {
 
 using namespace softsub;
 
-// The block first settles for a few frames so the benchmark measures a fluid in
-// motion at rest density, not the first lattice frames.
-void BM_SeedFrame(benchmark::State& st) {
-  const auto n = static_cast<std::size_t>(st.range(0));
-  solver::Model model;
-  solver::State state;
-  scenarios::fluidBlock(n, 1.0, model, state);
+// Both settle for a few frames first so the benchmark measures a fluid in motion at
+// rest density, not the first lattice frames.
+void run(benchmark::State& st, solver::Model& model, solver::State& state, std::size_t n) {
   solver::Simulation sim(model, std::move(state));
   for (int f = 0; f < 4; ++f) sim.advanceFrame();
+  const std::int64_t builds0 = sim.listBuilds();
   for (auto _ : st) sim.advanceFrame();
   const double steps = static_cast<double>(st.iterations()) * model.substeps;
   st.counters["particle-steps/s"] =
       benchmark::Counter(steps * static_cast<double>(n), benchmark::Counter::kIsRate);
   st.counters["bytes/particle"] = static_cast<double>(sim.memoryBytes()) / static_cast<double>(n);
+  st.counters["substeps/list"] = steps / static_cast<double>(std::max<std::int64_t>(1, sim.listBuilds() - builds0));
 }
-BENCHMARK(BM_SeedFrame)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(20000)->Arg(50000)->Arg(100000)->Arg(200000)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+// The seed's table: a pool of goo 10 layers deep in a container (the scaling check).
+void BM_SeedFrame(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  solver::Model model;
+  solver::State state;
+  scenarios::fluidPool(n, 1.0, 10, model, state);
+  run(st, model, state, n);
+}
+BENCHMARK(BM_SeedFrame)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(50000)->Arg(100000)->Arg(200000)
+    ->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+// A cube of goo slumping on the floor (more surface for small n, more motion).
+void BM_SlumpingCube(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  solver::Model model;
+  solver::State state;
+  scenarios::fluidBlock(n, 1.0, model, state);
+  run(st, model, state, n);
+}
+BENCHMARK(BM_SlumpingCube)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 }  // namespace
 

@@ -54,7 +54,7 @@ struct Model {
   forces::InteractionTable table;
   /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
   /// often (docs/architecture.md, "The pair list").
-  double pairListSkin = 0.2;
+  double pairListSkin = 0.1;
 
   /// Seconds per substep.
   [[nodiscard]] double dt() const { return 1.0 / (framesPerSecond * substeps); }

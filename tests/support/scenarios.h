@@ -38,4 +38,36 @@ inline void fluidBlock(std::size_t n, double spacing, solver::Model& model, solv
   }
 }
 
+/// One fluid of `n` particles filling the floor of a closely fitting container to a
+/// fixed depth of `layers` lattice layers (spacing `spacing`): the seed's benchmark
+/// situation, a fluid in a container. With the depth fixed, more particles means a
+/// wider pool, so the neighbours per particle stay the same and the cost per particle
+/// should too (the linear-scaling check). Scene-default fluid parameters.
+inline void fluidPool(std::size_t n, double spacing, std::size_t layers, solver::Model& model,
+                      solver::State& state) {
+  const auto side = static_cast<std::size_t>(
+      std::ceil(std::sqrt(static_cast<double>(n) / static_cast<double>(layers))));
+  fluid::FluidParams p;
+  model = solver::Model{};
+  model.fluids.push_back({"goo", {0.8f, 0.5f, 0.2f}, p.particleSize, p.particleMass, 0,
+                          static_cast<std::uint32_t>(n)});
+  model.materials.push_back({static_cast<float>(1 / p.particleMass), static_cast<float>(p.particleSize / 2)});
+  model.table = forces::InteractionTable(1);
+  model.table.set(0, 0, {fluid::ownFunction(p), p.viscosity, 0});
+  const double half = 0.5 * static_cast<double>(side) * spacing + 0.5;
+  solver::Container c;
+  c.lo = {-half, 0, -half};
+  c.hi = {half, 4.0 * static_cast<double>(layers) * spacing, half};
+  model.container = c;
+  state = solver::State{};
+  state.particles.reserve(n);
+  const double x0 = -half + 0.5 + 0.5 * spacing;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = k % side, j = (k / side) % side, l = k / (side * side);
+    state.particles.add(static_cast<float>(x0 + static_cast<double>(i) * spacing),
+                        static_cast<float>(0.5 + static_cast<double>(l) * spacing),
+                        static_cast<float>(x0 + static_cast<double>(j) * spacing), 0, 0, 0, 0, 0);
+  }
+}
+
 }  // namespace softsub::scenarios
