@@ -14,34 +14,27 @@ namespace {
 // cell first, then the forward neighbour cells) are copied into a contiguous buffer;
 // per particle one loop computes squared distances over it (vectorised) and a
 // branch-free compaction keeps the partners.
-struct CellScratch {
-  std::vector<float> x, y, z, r2;
-  std::vector<std::uint32_t> slot, kept;
-  void resize(std::size_t n) {
-    if (x.size() >= n) return;
-    for (auto* v : {&x, &y, &z, &r2}) v->resize(n);
-    slot.resize(n);
-    kept.resize(n);
-  }
+struct Buffers {
+  const float* __restrict x;
+  const float* __restrict y;
+  const float* __restrict z;
+  float* __restrict r2;
+  const std::uint32_t* __restrict slot;
+  std::uint32_t* __restrict kept;
 };
 
-// Squared distances from (xi, yi, zi) to buffer entries [from, len), kept if < cut2.
-inline std::uint32_t filter(CellScratch& sc, std::uint32_t from, std::uint32_t len, float xi, float yi,
+// Squared distances from (xi, yi, zi) to buffer entries [from, len); the slots of
+// those closer than sqrt(cut2) go to b.kept. Returns how many.
+inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
                             float zi, float cut2) {
-  const float* __restrict bx = sc.x.data();
-  const float* __restrict by = sc.y.data();
-  const float* __restrict bz = sc.z.data();
-  float* __restrict r2 = sc.r2.data();
   for (std::uint32_t k = from; k < len; ++k) {
-    const float dx = bx[k] - xi, dy = by[k] - yi, dz = bz[k] - zi;
-    r2[k] = dx * dx + dy * dy + dz * dz;
+    const float dx = b.x[k] - xi, dy = b.y[k] - yi, dz = b.z[k] - zi;
+    b.r2[k] = dx * dx + dy * dy + dz * dz;
   }
-  std::uint32_t* __restrict kept = sc.kept.data();
-  const std::uint32_t* __restrict slot = sc.slot.data();
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
-    kept[n] = slot[k];
-    n += r2[k] < cut2 ? 1u : 0u;
+    b.kept[n] = b.slot[k];
+    n += b.r2[k] < cut2 ? 1u : 0u;
   }
   return n;
 }
@@ -53,13 +46,10 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   const std::size_t n = s.size();
   offsets_.resize(n + 1);
   partners_.clear();
-  // Reused across calls (and grown only when a denser neighbourhood appears).
-  static thread_local CellScratch sc;
-  static thread_local std::vector<float> rowCut2;
-  rowCut2.resize(table.materials());
-  for (std::size_t a = 0; a < rowCut2.size(); ++a) {
+  rowCut2_.resize(table.materials());
+  for (std::size_t a = 0; a < rowCut2_.size(); ++a) {
     const float rc = std::sqrt(table.rowCutoff2(a)) + skin;
-    rowCut2[a] = rc * rc;
+    rowCut2_[a] = rc * rc;
   }
   const std::size_t cells = grid.cellCount();
   for (std::size_t c = 0; c < cells; ++c) {
@@ -67,21 +57,26 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
     const auto forward = grid.forwardRanges(c);
     std::uint32_t len = own.end - own.begin;
     for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
-    sc.resize(len);
+    if (bx_.size() < len) {  // grows to the densest neighbourhood seen, then stays
+      for (auto* v : {&bx_, &by_, &bz_, &r2_}) v->resize(len);
+      slot_.resize(len);
+      kept_.resize(len);
+    }
     std::uint32_t k = 0;
     auto append = [&](std::uint32_t b, std::uint32_t e) {
       for (std::uint32_t j = b; j < e; ++j, ++k) {
-        sc.x[k] = s.px[j]; sc.y[k] = s.py[j]; sc.z[k] = s.pz[j]; sc.slot[k] = j;
+        bx_[k] = s.px[j]; by_[k] = s.py[j]; bz_[k] = s.pz[j]; slot_[k] = j;
       }
     };
     append(own.begin, own.end);
     for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
+    const Buffers b{bx_.data(), by_.data(), bz_.data(), r2_.data(), slot_.data(), kept_.data()};
     // Cells come in slot order, so offsets fill in order too.
     for (std::uint32_t i = own.begin; i < own.end; ++i) {
       offsets_[i] = static_cast<std::uint32_t>(partners_.size());
       const std::uint32_t kept =
-          filter(sc, i - own.begin + 1, len, s.px[i], s.py[i], s.pz[i], rowCut2[s.material[i]]);
-      partners_.insert(partners_.end(), sc.kept.begin(), sc.kept.begin() + kept);
+          filter(b, i - own.begin + 1, len, s.px[i], s.py[i], s.pz[i], rowCut2_[s.material[i]]);
+      partners_.insert(partners_.end(), kept_.begin(), kept_.begin() + kept);
     }
   }
   offsets_[n] = static_cast<std::uint32_t>(partners_.size());

@@ -26,12 +26,17 @@ class PairList {
   [[nodiscard]] std::size_t pairCount() const { return partners_.size(); }
   /// Bytes reserved.
   [[nodiscard]] std::size_t memoryBytes() const {
-    return offsets_.capacity() * 4 + partners_.capacity() * 4;
+    return (offsets_.capacity() + partners_.capacity() + slot_.capacity() + kept_.capacity()) * 4 +
+           (bx_.capacity() + by_.capacity() + bz_.capacity() + r2_.capacity() + rowCut2_.capacity()) * 4;
   }
 
  private:
   std::vector<std::uint32_t> offsets_;
   std::vector<std::uint32_t> partners_;
+  // Build scratch, kept between builds: one cell's candidates (positions, slots,
+  // squared distances, kept slots) and each material row's squared list radius.
+  std::vector<float> bx_, by_, bz_, r2_, rowCut2_;
+  std::vector<std::uint32_t> slot_, kept_;
 };
 
 /// Adds to store.f the forces of every listed pair closer than its cutoff (Newton's

@@ -68,7 +68,9 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   entries_[b * materials_ + a] = e;
   described_[a * materials_ + b] = in;
   described_[b * materials_ + a] = in;
-  for (std::size_t r = 0; r < materials_; ++r) {
+  // Only rows a and b changed: O(materials) per set(), so compiling many fluids
+  // stays quadratic in the number of pairs it sets, not worse.
+  for (const std::size_t r : {a, b}) {
     rowCutoff2_[r] = 0;
     for (std::size_t c = 0; c < materials_; ++c)
       rowCutoff2_[r] = std::max(rowCutoff2_[r], entries_[r * materials_ + c].cutoff2);

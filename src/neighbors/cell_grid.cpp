@@ -119,10 +119,15 @@ void CellGrid::sortKeys() {
   order_.resize(n);
   for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
 
+  // Insertion sort while the data is nearly sorted; it gives up (the radix sort then
+  // finishes from wherever it stopped, still correct) once it has moved more than a few
+  // slots per particle, so its worst case stays O(n).
   std::size_t descents = 0;
   for (std::size_t i = 1; i < n; ++i) descents += keys_[i] < keys_[i - 1];
   if (descents * 32 < n) {
-    for (std::size_t i = 1; i < n; ++i) {
+    std::size_t budget = 8 * n;
+    bool done = true;
+    for (std::size_t i = 1; i < n && done; ++i) {
       const std::uint64_t k = keys_[i];
       const std::uint32_t o = order_[i];
       std::size_t j = i;
@@ -133,8 +138,11 @@ void CellGrid::sortKeys() {
       }
       keys_[j] = k;
       order_[j] = o;
+      const std::size_t moved = i - j;
+      if (moved > budget) done = false;
+      else budget -= moved;
     }
-    return;
+    if (done) return;
   }
 
   keysTmp_.resize(n);

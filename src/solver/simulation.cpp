@@ -32,12 +32,11 @@ bool Simulation::listIsStale() const {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
   const float limit = 0.25f * skin_ * skin_;
-  float worst = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
-    worst = std::max(worst, dx * dx + dy * dy + dz * dz);
+    if (!(dx * dx + dy * dy + dz * dz < limit)) return true;  // NaN also rebuilds
   }
-  return !(worst < limit);  // NaN positions also force a rebuild
+  return false;
 }
 
 void Simulation::computeForces() {
@@ -110,15 +109,19 @@ void Simulation::integrateVerletSecondHalf() {
 }
 
 // Container walls: a particle's centre stays one radius inside. On contact the
-// position is put back on the wall; if the particle moves into the wall its normal
-// velocity is reversed and scaled by the restitution and its tangential velocity is
-// scaled by (1 - friction). No walls at all without an <Environment>.
+// position is put back on the wall; if the particle moves into the wall, its normal
+// velocity v_n is reversed and scaled by the restitution e, and its tangential velocity
+// v_t is reduced by friction * min(|v_t|, (1 + e) |v_n|). At an impact this is the
+// seed's rule (v_t becomes (1 - friction) v_t); in resting or sliding contact the
+// reduction is capped by the normal velocity change, which makes it Coulomb friction
+// (deceleration friction * g on a floor) whatever the substep count. No walls at all
+// without an <Environment>.
 void Simulation::applyWalls() {
   if (!model_.container) return;
   const Container& box = *model_.container;
   ParticleStore& s = state_.particles;
   const float e = static_cast<float>(box.restitution);
-  const float keep = static_cast<float>(1.0 - box.friction);
+  const float mu = static_cast<float>(box.friction);
   float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
   float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
   const MaterialInfo* mats = model_.materials.data();
@@ -134,10 +137,16 @@ void Simulation::applyWalls() {
       int side = 0;
       if (p < lo) { p = lo; side = -1; }
       else if (lid && p > hi) { p = hi; side = 1; }
-      if (side != 0 && v * static_cast<float>(side) > 0) {
-        v = -e * v;
-        vel[(a + 1) % 3][i] *= keep;
-        vel[(a + 2) % 3][i] *= keep;
+      if (side == 0 || !(v * static_cast<float>(side) > 0)) continue;
+      const float vn = std::abs(v);
+      v = -e * v;
+      float& t1 = vel[(a + 1) % 3][i];
+      float& t2 = vel[(a + 2) % 3][i];
+      const float vt = std::sqrt(t1 * t1 + t2 * t2);
+      if (vt > 0) {
+        const float scale = 1.0f - mu * std::min(vt, (1.0f + e) * vn) / vt;
+        t1 *= scale;
+        t2 *= scale;
       }
     }
   }

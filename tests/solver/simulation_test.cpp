@@ -203,6 +203,73 @@ TEST(Simulation, WallsKeepEveryParticleInsideTheContainer) {
   }
 }
 
+// One particle sliding on the floor of a big container at speed v0 along x.
+Model slider(int substeps, double friction, double restitution) {
+  Model m;
+  m.substeps = substeps;
+  m.fluids.push_back({"puck", {1, 1, 1}, 1, 1, 0, 1});
+  m.materials.push_back({1.0f, 0.5f});
+  m.table = forces::InteractionTable(1);
+  m.table.set(0, 0, {forces::Linear{0, 1, 0, 0}, 0, 0});
+  Container c;
+  c.lo = {-1000, 0, -1000};
+  c.hi = {1000, 100, 1000};
+  c.friction = friction;
+  c.restitution = restitution;
+  m.container = c;
+  return m;
+}
+
+TEST(Walls, SlidingFrictionIsCoulombAndIndependentOfSubsteps) {
+  // Resting contact: the normal impulses carry the weight, so friction decelerates the
+  // slider at mu * g. Distance after 1 s from 5 units/s: 5 - mu g / 2.
+  const double mu = 0.05, g = 9.81;
+  for (int substeps : {4, 8, 32}) {
+    const Model m = slider(substeps, mu, 0.2);
+    State s;
+    s.particles.add(0, 0.5f, 0, 5, 0, 0, 0, 0);
+    Simulation sim(m, s);
+    for (int f = 0; f < 24; ++f) sim.advanceFrame();
+    EXPECT_NEAR(sim.state().particles.px[0], 5 - mu * g / 2, 0.03) << substeps << " substeps";
+    EXPECT_NEAR(sim.state().particles.py[0], 0.5f, 1e-3) << "stays on the floor";
+  }
+}
+
+TEST(Walls, ImpactScalesTangentialVelocityByOneMinusFriction) {
+  // Head-on enough that the Coulomb cap does not bind: v_t -> (1 - mu) v_t, v_n -> -e v_n.
+  Model m = slider(8, 0.3, 0.5);
+  m.gravity = Vec3::Zero();
+  State s;
+  s.particles.add(0, 0.55f, 0, 3, -10, 4, 0, 0);  // reaches the floor (y = 0.5) this step
+  Simulation sim(m, s);
+  sim.step();
+  const ParticleStore& p = sim.state().particles;
+  EXPECT_FLOAT_EQ(p.py[0], 0.5f);
+  EXPECT_NEAR(p.vy[0], 5.0, 1e-5);
+  EXPECT_NEAR(p.vx[0], 0.7 * 3, 1e-5);
+  EXPECT_NEAR(p.vz[0], 0.7 * 4, 1e-5);
+}
+
+TEST(Walls, OpenTopLetsParticlesOutAClosedOneDoesNot) {
+  for (bool closed : {false, true}) {
+    Model m = slider(8, 0, 1);
+    m.gravity = Vec3::Zero();
+    m.container->hi = {1000, 10, 1000};
+    m.container->closed = closed;
+    State s;
+    s.particles.add(0, 5, 0, 0, 150, 0, 0, 0);  // 12.5 units in two frames
+    Simulation sim(m, s);
+    sim.advanceFrame();
+    sim.advanceFrame();
+    if (closed) {
+      EXPECT_LE(sim.state().particles.py[0], 9.5f);
+      EXPECT_LT(sim.state().particles.vy[0], 0.0f) << "bounced off the lid";
+    } else {
+      EXPECT_GT(sim.state().particles.py[0], 10.0f) << "left through the open top";
+    }
+  }
+}
+
 TEST(Simulation, BlowUpIsReportedWithFrameFluidAndParticle) {
   Model m = twoFluids();
   State s = cloudState(50, 1, m);

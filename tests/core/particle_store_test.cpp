@@ -1,0 +1,70 @@
+// The particle store: every array moves together, ids stay a permutation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "core/particle_store.h"
+
+namespace softsub {
+namespace {
+
+ParticleStore numbered(std::size_t n) {
+  ParticleStore s;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float f = static_cast<float>(i);
+    s.add(f, 10 + f, 20 + f, 30 + f, 40 + f, 50 + f, static_cast<std::uint16_t>(i % 7),
+          static_cast<std::uint32_t>(i % 3));
+    s.fx.back() = 60 + f; s.fy.back() = 70 + f; s.fz.back() = 80 + f;
+  }
+  return s;
+}
+
+TEST(ParticleStore, AddAssignsIdsInOrder) {
+  const ParticleStore s = numbered(5);
+  ASSERT_EQ(s.size(), 5u);
+  for (std::uint32_t i = 0; i < 5; ++i) EXPECT_EQ(s.id[i], i);
+  EXPECT_EQ(s.material[4], 4);
+  EXPECT_EQ(s.owner[4], 1u);
+}
+
+TEST(ParticleStore, PermuteMovesEveryArrayTogether) {
+  ParticleStore s = numbered(1000);
+  std::vector<std::uint32_t> order(s.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  s.permute(order);
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const std::uint32_t was = order[k];
+    const float f = static_cast<float>(was);
+    ASSERT_EQ(s.id[k], was);
+    ASSERT_EQ(s.px[k], f); ASSERT_EQ(s.py[k], 10 + f); ASSERT_EQ(s.pz[k], 20 + f);
+    ASSERT_EQ(s.vx[k], 30 + f); ASSERT_EQ(s.vy[k], 40 + f); ASSERT_EQ(s.vz[k], 50 + f);
+    ASSERT_EQ(s.fx[k], 60 + f); ASSERT_EQ(s.fy[k], 70 + f); ASSERT_EQ(s.fz[k], 80 + f);
+    ASSERT_EQ(s.material[k], was % 7);
+    ASSERT_EQ(s.owner[k], was % 3);
+  }
+  // A second permutation composes with the first.
+  std::vector<std::uint32_t> back(s.size());
+  for (std::size_t k = 0; k < s.size(); ++k) back[order[k]] = static_cast<std::uint32_t>(k);
+  s.permute(back);
+  for (std::uint32_t k = 0; k < s.size(); ++k) ASSERT_EQ(s.id[k], k);
+}
+
+TEST(ParticleStore, SlotsByIdInvertsThePermutation) {
+  ParticleStore s = numbered(300);
+  std::vector<std::uint32_t> order(s.size());
+  std::iota(order.rbegin(), order.rend(), 0u);  // reversed
+  s.permute(order);
+  std::vector<std::uint32_t> slot;
+  s.slotsById(slot);
+  ASSERT_EQ(slot.size(), s.size());
+  for (std::uint32_t id = 0; id < s.size(); ++id) {
+    EXPECT_EQ(s.id[slot[id]], id);
+    EXPECT_EQ(s.px[slot[id]], static_cast<float>(id));
+  }
+}
+
+}  // namespace
+}  // namespace softsub
