@@ -5,6 +5,8 @@
 #include <csignal>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include <CLI/CLI.hpp>
@@ -41,26 +43,29 @@ const scene::FieldInfo* simulationField(std::string_view tag) {
   return nullptr;
 }
 
-/// Checks a command-line override against the schema's range for `tag`.
-void checkOverride(std::string_view option, std::string_view tag, std::int64_t value) {
+/// Checks a command-line override, when given, against the schema's range for `tag`
+/// (every value given is checked: a negative one is out of range, not "unset").
+void checkOverride(std::string_view option, std::string_view tag, const std::optional<std::int64_t>& value) {
+  if (!value) return;
   const scene::FieldInfo* info = simulationField(tag);
-  if (info == nullptr || info->range.contains(static_cast<double>(value))) return;
-  throw InputError({"command line", 0, std::string(option)}, fmt::format("{} is out of range", value),
+  if (info == nullptr) throw std::logic_error(fmt::format("no <Simulation> field {}", tag));
+  if (info->range.contains(static_cast<double>(*value))) return;
+  throw InputError({"command line", 0, std::string(option)}, fmt::format("{} is out of range", *value),
                    scene::allowedText(*info));
 }
 
 /// Everything `run` checks before it reads the scene: the command line itself.
 cache::Formats checkCommandLine(const RunOptions& o) {
-  if (o.frames >= 0) checkOverride("--frames", "Frames", o.frames);
-  if (o.substeps >= 0) checkOverride("--substeps", "Substeps", o.substeps);
+  checkOverride("--frames", "Frames", o.frames);
+  checkOverride("--substeps", "Substeps", o.substeps);
   const cache::Formats formats = cache::parseFormats(o.formats);
   if (o.record == 0) return {false, false, false};
   return formats;
 }
 
 void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
-  if (o.frames >= 0) desc.simulation.frames = static_cast<int>(o.frames);
-  if (o.substeps >= 0) desc.simulation.substeps = static_cast<int>(o.substeps);
+  if (o.frames) desc.simulation.frames = static_cast<int>(*o.frames);
+  if (o.substeps) desc.simulation.substeps = static_cast<int>(*o.substeps);
   if (!o.integrator.empty()) {
     const auto& names = scene::kIntegratorNames;
     const auto it = std::find(std::begin(names), std::end(names), o.integrator);

@@ -1,6 +1,7 @@
 #pragma once
 /// `softsub run`: simulate a scene (or the embedded default scene) into frame caches.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace CLI {
@@ -9,12 +10,12 @@ class App;
 
 namespace softsub::app {
 
-/// The options of `run` as given on the command line; "unset" values mean "take the
-/// scene's".
+/// The options of `run` as given on the command line; unset (nullopt or empty) values
+/// mean "take the scene's".
 struct RunOptions {
   std::string scene;                  ///< .scene file; empty: the embedded default scene
-  std::int64_t frames = -1;           ///< --frames; -1: the scene's Frames
-  std::int64_t substeps = -1;         ///< --substeps / -updateNum; -1: the scene's Substeps
+  std::optional<std::int64_t> frames;    ///< --frames; unset: the scene's Frames
+  std::optional<std::int64_t> substeps;  ///< --substeps / -updateNum; unset: the scene's Substeps
   std::string out;                    ///< --out; empty: <sceneDir>/<sceneName>Sim
   std::string formats = "all";        ///< --formats
   std::string integrator;             ///< --integrator; empty: the scene's

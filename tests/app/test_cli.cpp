@@ -81,6 +81,47 @@ TEST(Cli, OverrideErrorsNameTheOptionAndTheAllowedRange) {
   EXPECT_NE(f.err.find("unknown format 'gif'"), std::string::npos) << f.err;
 }
 
+// A negative override is a value like any other: checked against the schema's range,
+// never taken for "not given" (which once ran the scene's frames with exit code 0).
+TEST(Cli, NegativeAndOutOfRangeOverridesExitTwoAndWriteNothing) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  struct Case {
+    const char* args;
+    const char* message;  // expected in stderr
+  };
+  const Case cases[] = {
+      {"run --frames=-5",
+       "error: command line: --frames: -5 is out of range (allowed: integer [0, 1000000])"},
+      {"run --frames -5", "error: command line: --frames: -5 is out of range"},
+      {"run --frames=1000001", "--frames: 1000001 is out of range"},
+      {"run --substeps=0",
+       "error: command line: --substeps: 0 is out of range (allowed: integer [1, 10000])"},
+      {"run --substeps=-3", "error: command line: --substeps: -3 is out of range"},
+      {"run --substeps -3", "--substeps: -3 is out of range"},
+      {"-updateNum -3 -f", "--substeps: -3 is out of range"},
+      {"run --frames=abc", "error: Could not convert: --frames = abc"},
+  };
+  for (const Case& c : cases) {
+    const std::string args = std::string(c.args) + " " + quote(scene);
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.code, 2) << "softsub " << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << "softsub " << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << "softsub " << args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"}) << args;
+  }
+}
+
+// The ends of the ranges are allowed: --frames 0 writes only the initial state.
+TEST(Cli, OverridesAtTheEndsOfTheirRangesAreAccepted) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub("run --frames=0 --substeps=1 --formats sim " + quote(scene), tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), std::vector<std::string>{"two-fluids.0000.sim"});
+}
+
 TEST(Cli, MissingSceneFileIsAnIoError) {
   TempDir tmp;
   const RunResult r = runSoftsub("run nowhere.scene", tmp.path());
