@@ -109,8 +109,9 @@ std::string leafText(const Context& cx, pugi::xml_node node, const std::string& 
 Value parseValue(const Context& cx, pugi::xml_node node, const std::string& path,
                  const FieldInfo& f) {
   Value v;
-  if (auto problem = parseValueText(f, leafText(cx, node, path), v); !problem.empty()) {
-    cx.fail(cx.lineOf(node), path, std::move(problem), allowedText(f));
+  if (auto problem = parseValueText(f, leafText(cx, node, path), v); !problem.text.empty()) {
+    cx.fail(cx.lineOf(node), path, std::move(problem.text),
+            problem.allowed.empty() ? allowedText(f) : std::move(problem.allowed));
   }
   return v;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -14,9 +15,12 @@ namespace {
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
-// A problem with a value, thrown inside this file only and returned as text.
+static_assert(kMaxReal <= FLT_MAX, "every accepted real must convert to a finite float");
+
+// A problem with a value, thrown inside this file only and returned as a ValueProblem.
 struct Problem {
   std::string text;
+  std::string allowed;  // empty: the field's own rule
 };
 
 // from_chars does not take a leading '+'; people write one.
@@ -93,7 +97,9 @@ class ValueParser {
   }
 
  private:
-  [[noreturn]] static void bad(std::string problem) { throw Problem{std::move(problem)}; }
+  [[noreturn]] static void bad(std::string problem, std::string allowed = {}) {
+    throw Problem{std::move(problem), std::move(allowed)};
+  }
 
   [[nodiscard]] std::string_view single() const {
     if (tokens_.empty()) bad("the value is empty");
@@ -107,6 +113,11 @@ class ValueParser {
     double v = 0;
     if (auto problem = parseReal(token, v); !problem.empty()) bad(std::move(problem));
     if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token));
+    // After the range: a bounded field names its own range; the others this limit.
+    if (std::fabs(v) > kMaxReal) {
+      bad(fmt::format("{} is too large for single precision", quote(token)),
+          "|value| <= 3.4e38");
+    }
     return v;
   }
 
@@ -185,12 +196,12 @@ std::vector<std::string_view> splitTokens(std::string_view s) {
   return out;
 }
 
-std::string parseValueText(const FieldInfo& field, std::string_view text, Value& out) {
+ValueProblem parseValueText(const FieldInfo& field, std::string_view text, Value& out) {
   try {
     out = ValueParser(field, text).parse();
     return {};
   } catch (const Problem& p) {
-    return p.text;
+    return {p.text, p.allowed};
   }
 }
 

@@ -2,6 +2,9 @@
 /// Scene-file text to field values: strict, locale-independent number parsing
 /// (std::from_chars, whole token, finite, in range) and the word-level helpers the
 /// reader's messages use. No XML here; reader.cpp adds the file, line and element.
+///
+/// Every real must also fit single precision (|value| <= kMaxReal): the model and the
+/// caches store floats, so a bigger number would turn into inf after validation.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,12 +16,22 @@ namespace softsub::scene {
 /// s without leading and trailing XML white space (space, tab, CR, LF).
 std::string_view trimSpace(std::string_view s);
 
+/// The largest magnitude of a real in a scene, "3.4e38" in messages: just below FLT_MAX
+/// (3.4028e38), so every accepted real is a finite float.
+inline constexpr double kMaxReal = 3.4e38;
+
+/// A problem with a value's text, in words.
+struct ValueProblem {
+  std::string text;     ///< "'abc' is not a number"; empty: no problem
+  std::string allowed;  ///< the rule broken when not the field's own; empty: allowedText(field)
+};
+
 /// The white-space separated tokens of s.
 std::vector<std::string_view> splitTokens(std::string_view s);
 
 /// Parses the text of a value element by the field's kind, range and choices into out.
-/// Returns the problem in words ("'abc' is not a number"), or "" on success.
-std::string parseValueText(const FieldInfo& field, std::string_view text, Value& out);
+/// Returns the problem (empty text on success).
+ValueProblem parseValueText(const FieldInfo& field, std::string_view text, Value& out);
 
 /// " (did you mean <X>?)" when name is a near miss (case or a couple of letters) of one
 /// of the candidates, else "".

@@ -88,13 +88,14 @@ INSTANTIATE_TEST_SUITE_P(App, Interrupt, ::testing::Values(SIGINT, SIGTERM), sig
 
 TEST(BlowUp, ExitsFourNamingTheFrameAndKeepsEarlierFrames) {
   TempDir tmp;
-  // A repulsion far beyond single precision: the first step produces a non-finite value.
+  // A repulsion at the edge of single precision (the most a scene may hold): the forces
+  // of three close neighbours add up beyond it, so the first step is non-finite.
   std::ofstream(tmp / "blow.scene") << R"(<Scene version="1">
   <Simulation><Frames>5</Frames></Simulation>
-  <Fluid><Name>unstable</Name><NumberOfParticles>2</NumberOfParticles><Particles>0 0 0  0.5 0 0</Particles></Fluid>
+  <Fluid><Name>unstable</Name><Particles>0 0 0  0.05 0 0  0.1 0 0  0.15 0 0</Particles></Fluid>
   <Interactions>
     <Pair><A>unstable</A><B>unstable</B>
-      <Linear><AtZero>1e300</AtZero><Cutoff>1</Cutoff><Min>0</Min><Max>1e300</Max></Linear></Pair>
+      <Linear><AtZero>3.4e38</AtZero><Cutoff>1</Cutoff><Min>0</Min><Max>3.4e38</Max></Linear></Pair>
   </Interactions>
 </Scene>
 )";

@@ -184,6 +184,24 @@ TEST(Reader, NumberFormsAreLocaleIndependentAndStrict) {
   }
 }
 
+TEST(Reader, RealsUpToSinglePrecisionAreAccepted) {
+  const SceneDesc d = readSceneText(
+      sceneWith("<Simulation><Gravity>3.4e38 -3.4e38 1e-30</Gravity></Simulation>" + validFluid("w")),
+      "t.scene");
+  EXPECT_EQ(d.simulation.gravity, Vec3(3.4e38, -3.4e38, 1e-30));
+  for (const char* big : {"3.41e38", "-3.41e38", "1e39", "1e300"}) {
+    const InputError e = readError(
+        sceneWith("<Simulation><Gravity>0 " + std::string(big) + " 0</Gravity></Simulation>"));
+    EXPECT_EQ(e.problem(), "'" + std::string(big) + "' is too large for single precision") << e.what();
+    EXPECT_EQ(e.allowed(), "|value| <= 3.4e38") << e.what();
+  }
+  // A bounded field names its own range first.
+  const InputError fps =
+      readError(sceneWith("<Simulation><FramesPerSecond>1e39</FramesPerSecond></Simulation>"));
+  EXPECT_EQ(fps.problem(), "1e39 is out of range") << fps.what();
+  EXPECT_EQ(fps.allowed(), "(0, 1000]") << fps.what();
+}
+
 TEST(Reader, CommentsCdataAndBomAreFine) {
   const std::string text = "\xEF\xBB\xBF<Scene version=\"1\"><!-- c -->\n<Fluid><Name><![CDATA[w]]></Name>"
                            "<Particles>1 2 3<!-- between -->4 5 6</Particles></Fluid>\n</Scene>";
@@ -224,11 +242,12 @@ TEST(Reader, ParticleCapCountsExplicitAndFillsAcrossFluids) {
 }
 
 TEST(Reader, AstronomicalFillIsRefusedWithoutAllocating) {
-  // 1e300 points per axis: saturates instead of overflowing, and nothing is generated.
+  // 1e300 and 3e338 points per axis: saturates instead of overflowing, and nothing is
+  // generated.
   const InputError e = readError(
       sceneWith("<Fluid><Name>w</Name><Fill><Shape>box</Shape><Max>1 1 1</Max>"
                 "<Spacing>1e-300</Spacing></Fill>"
-                "<Fill><Shape>sphere</Shape><Radius>1e300</Radius><Spacing>1e-300</Spacing></Fill>"
+                "<Fill><Shape>sphere</Shape><Radius>3e38</Radius><Spacing>1e-300</Spacing></Fill>"
                 "</Fluid>"));
   EXPECT_NE(e.problem().find("more than 18446744073709551614"), std::string::npos) << e.what();
   EXPECT_NE(e.problem().find("cap of 20000000"), std::string::npos) << e.what();

@@ -14,6 +14,7 @@
 #include "scene/fill.h"
 #include "scene/reader.h"
 #include "scene/schema.h"
+#include "scene/value_text.h"
 #include "scene/writer.h"
 
 namespace softsub::scene {
@@ -161,7 +162,8 @@ class RandomScenes {
   double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
 
   // A number inside the range: full-precision values, short decimals, the ends
-  // themselves and tiny or huge magnitudes, to exercise shortest round-trip printing.
+  // themselves and tiny or huge magnitudes (up to single precision's, which is what the
+  // reader takes), to exercise shortest round-trip printing.
   double real(const Range& r) {
     const double lo = std::isinf(r.min) ? (std::isinf(r.max) ? -1e3 : r.max - 1e3) : r.min;
     const double hi = std::isinf(r.max) ? lo + 1e3 : r.max;
@@ -172,9 +174,9 @@ class RandomScenes {
         case 1: v = std::round(uniform(lo, hi) * 100) / 100; break;
         case 2: v = coin() ? lo : hi; break;
         case 3: v = lo + std::pow(10.0, uniform(-12, 2)); break;
-        default: v = (coin() ? 1 : -1) * std::pow(10.0, uniform(-300, 300)); break;
+        default: v = (coin() ? 1 : -1) * std::pow(10.0, uniform(-300, 38.6)); break;
       }
-      if (std::isfinite(v) && r.contains(v)) return v;
+      if (std::isfinite(v) && std::fabs(v) <= kMaxReal && r.contains(v)) return v;
     }
   }
 
