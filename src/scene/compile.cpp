@@ -1,8 +1,14 @@
 #include "scene/compile.h"
 
+#include <limits>
+
 #include "scene/fill.h"
+#include "scene/reader.h"
 
 namespace softsub::scene {
+
+// The reader's cap keeps every fluid index a valid 16-bit material index.
+static_assert(kMaxFluids - 1 <= std::numeric_limits<std::uint16_t>::max());
 
 solver::Integrator toSolver(Integrator i) {
   switch (i) {

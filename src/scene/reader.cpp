@@ -303,6 +303,7 @@ class SceneReader {
       readInteractions(n, p);
     });
     c.refuse("Object", std::string(kRigidRefused));
+    for ([[maybe_unused]] const pugi::xml_node f : root.children("Fluid")) ++fluidElements_;
     c.run();
     checkPairs();
     checkParticleCap();
@@ -374,6 +375,11 @@ class SceneReader {
     const std::string label = validName(nameText)
                                   ? fmt::format("Fluid '{}'", nameText)
                                   : fmt::format("Fluid[{}]", scene_.fluids.size() + 1);
+    if (scene_.fluids.size() == kMaxFluids) {
+      cx_.fail(fluid.line, label,
+               fmt::format("the scene has {} fluids, more than the cap of {}", fluidElements_, kMaxFluids),
+               fmt::format("at most {} fluids", kMaxFluids));
+    }
     Children c(cx_, node, label);
     c.fields(fieldsOf<FluidDesc>(), fluid);
     c.element("Fill", [&](pugi::xml_node n, const std::string&) {
@@ -589,6 +595,7 @@ class SceneReader {
   std::map<std::string, int> nameLines_;  // fluid name -> line of its <Name>
   std::vector<std::string> labels_;       // per fluid: its element path
   std::vector<PairSource> pairSources_;   // per pair: lines of A and B, its path
+  std::size_t fluidElements_ = 0;         // <Fluid> elements of the file, for the cap's message
 };
 
 }  // namespace

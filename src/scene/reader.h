@@ -2,6 +2,7 @@
 /// Reading and validating .scene files (docs/scene-format.md). Every problem is an
 /// InputError naming the file, line, element, the problem and what is allowed; a
 /// SceneDesc that comes back is valid, so later stages can trust it.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -9,6 +10,10 @@
 #include "scene/scene_desc.h"
 
 namespace softsub::scene {
+
+/// Most fluids a scene may have: a particle's fluid is a 16-bit material index, and the
+/// interaction table holds fluids x fluids entries (1024 fluids: about a million).
+inline constexpr std::size_t kMaxFluids = 1024;
 
 /// Limits the reader enforces on top of the format's own rules.
 struct ReadOptions {

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "scene/reader.h"
+
 namespace softsub::scene {
 
 using forces::Curve;
@@ -246,13 +248,14 @@ constexpr Field<PairDesc> kPair[] = {
 };
 
 constexpr std::string_view kOneFunction = "exactly one function per parent";
+static_assert(kMaxFluids == 1024, "the count of <Fluid> in kElements names the cap");
 
 constexpr ElementInfo kElements[] = {
     {"Scene", "", false, "the root, exactly one", "the whole scene; attribute version=\"1\""},
     {"Simulation", "Scene", false, "optional", "timing, gravity and integrator"},
     {"Camera", "Scene", false, "optional", "start pose of the viewer and renderer"},
     {"Environment", "Scene", false, "optional", "the container; absent: no walls at all"},
-    {"Fluid", "Scene", true, "any number", "one substance and its particles"},
+    {"Fluid", "Scene", true, "up to 1024", "one substance and its particles"},
     {"Interactions", "Scene", false, "optional", "the dictionary of interactions"},
     {"Fill", "Fluid", true, "any number", "a lattice of particles filling a shape"},
     {"FluidFluid", "Interactions", false, "optional",

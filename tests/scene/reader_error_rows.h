@@ -52,6 +52,14 @@ inline std::string bareFluid(std::string_view inner) { return S("<Fluid>\n" + st
 
 inline std::string fill(std::string_view inner) { return F("<Fill>\n" + std::string(inner) + "\n</Fill>"); }
 
+// n valid fluids named f0, f1, ..., one per line.
+inline std::string manyFluids(std::size_t n) {
+  std::string out;
+  // (append, not "f" + to_string(i): GCC 12 warns -Wrestrict inside operator+.)
+  for (std::size_t i = 0; i < n; ++i) out += validFluid(std::string("f").append(std::to_string(i)));
+  return out;
+}
+
 inline std::vector<Row> rows() {
   const std::string fillPath = "Fluid 'w'/Fill[2]";
   return {
@@ -200,6 +208,13 @@ inline std::vector<Row> rows() {
        "Fluid 'w'/Particles", "5 numbers do not make whole positions (3 numbers each)", ""},
       {"PositionNotFinite", F("<Particles>0 0 nan</Particles><!--E-->"), "Fluid 'w'/Particles",
        "'nan' is not a finite number", ""},
+      // Refused at the first fluid past the cap, before anything after it is read (the
+      // last fluid's own error is never reached).
+      {"TooManyFluids",
+       S(manyFluids(kMaxFluids) +
+         "<Fluid><!--E-->\n<Name>one-more</Name>\n<Fill><Shape>box</Shape></Fill>\n</Fluid>\n"
+         "<Fluid><Name>bad name</Name><Viscosity>-1</Viscosity></Fluid>"),
+       "Fluid 'one-more'", "the scene has 1026 fluids, more than the cap of 1024", "at most 1024 fluids"},
       {"NoParticleSource", S("<Fluid><!--E-->\n<Name>w</Name>\n</Fluid>"), "Fluid 'w'",
        "the fluid has no particles", "explicit <Particles> or at least one <Fill>"},
       {"ZeroCountNoFill",

@@ -202,6 +202,15 @@ TEST(Reader, RealsUpToSinglePrecisionAreAccepted) {
   EXPECT_EQ(fps.allowed(), "(0, 1000]") << fps.what();
 }
 
+TEST(Reader, UpToTheFluidCapIsAccepted) {
+  std::string fluids;
+  for (std::size_t i = 0; i < kMaxFluids; ++i)
+    fluids += validFluid(std::string("f").append(std::to_string(i)));
+  const SceneDesc d = readSceneText(sceneWith(fluids), "t.scene");
+  EXPECT_EQ(d.fluids.size(), kMaxFluids);
+  EXPECT_EQ(d.fluids.back().name, "f1023");
+}
+
 TEST(Reader, CommentsCdataAndBomAreFine) {
   const std::string text = "\xEF\xBB\xBF<Scene version=\"1\"><!-- c -->\n<Fluid><Name><![CDATA[w]]></Name>"
                            "<Particles>1 2 3<!-- between -->4 5 6</Particles></Fluid>\n</Scene>";
