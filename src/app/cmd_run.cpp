@@ -132,7 +132,10 @@ int runCommand(const RunOptions& o) {
   scene::Compiled compiled = scene::compile(loaded.desc);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
-  if (!o.drawPerFrame.empty() && !o.quiet)
+  // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
+  // farm log gets nothing but errors.
+  const bool chatty = stderrIsTerminal() && !o.quiet;
+  if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
 
   cache::FrameWriter writer(outDir, loaded.name, formats);
@@ -141,8 +144,7 @@ int runCommand(const RunOptions& o) {
   if (anyFormat(formats)) observers.push_back(&writer);
   observers.push_back(&done);
 
-  const bool terminal = stderrIsTerminal();
-  ProgressLine progress(terminal && !o.quiet, lastFrame, particles);
+  ProgressLine progress(chatty, lastFrame, particles);
   solver::FrameLoopHooks hooks;
   hooks.stop = &installStopHandlers();
   hooks.recordUpTo = o.stopRecordingAt;
@@ -166,7 +168,7 @@ int runCommand(const RunOptions& o) {
                stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT", done.last, where);
     return static_cast<int>(ExitCode::Interrupted);
   }
-  if (!o.quiet)
+  if (chatty)
     fmt::print(stderr, "done: {} frames, {} particles, {:.2f} s ({:.1f} ms/frame), output: {}\n",
                progress.framesDone(), groupThousands(particles), seconds, progress.secondsPerFrame() * 1e3,
                where);

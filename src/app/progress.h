@@ -1,5 +1,6 @@
 #pragma once
-/// Progress of a run on stderr: a redrawn line on a terminal, a summary otherwise.
+/// Progress of a run on stderr: a line redrawn in place, for a terminal only (the caller
+/// decides: stderr is a terminal and not --quiet).
 #include <chrono>
 #include <cstdint>
 #include <string>

@@ -1,14 +1,20 @@
 #include "app_test_util.h"
 
+#include <poll.h>
+#include <pty.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include "scene/compile.h"
@@ -42,6 +48,46 @@ RunResult runSoftsub(const std::string& args, const fs::path& cwd) {
   r.err = readFile(errFile);
   fs::remove(outFile);
   fs::remove(errFile);
+  return r;
+}
+
+RunResult runSoftsubInTerminal(const std::string& args, const fs::path& cwd) {
+  // The command line is prepared before fork: the child only changes folder and execs.
+  const std::string cmd = "cd " + quote(cwd) + " && exec " + quote(SOFTSUB_BINARY) + " " + args;
+  int master = -1;
+  const pid_t pid = ::forkpty(&master, nullptr, nullptr, nullptr);
+  if (pid < 0) throw std::runtime_error("forkpty failed");
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  RunResult r;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  char buf[4096];
+  for (;;) {
+    pollfd p{master, POLLIN, 0};
+    const int ready = ::poll(&p, 1, 100);
+    if (ready < 0 && errno != EINTR) break;
+    if (ready > 0) {
+      const ssize_t n = ::read(master, buf, sizeof buf);
+      if (n > 0) {
+        r.out.append(buf, static_cast<std::size_t>(n));
+        continue;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      break;  // EIO (or 0): every slave side is closed, the child is gone
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      ADD_FAILURE() << "softsub " << args << " still running after 60 s under a terminal";
+      ::kill(pid, SIGKILL);
+      break;
+    }
+  }
+  ::close(master);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  if (WIFEXITED(status)) r.code = WEXITSTATUS(status);
+  else if (WIFSIGNALED(status)) r.code = 128 + WTERMSIG(status);
   return r;
 }
 

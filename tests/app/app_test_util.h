@@ -20,6 +20,12 @@ struct RunResult {
 /// capturing stdout and stderr to files. stdin is /dev/null.
 RunResult runSoftsub(const std::string& args, const fs::path& cwd);
 
+/// Runs `softsub <args>` in `cwd` under a fresh pseudo-terminal (stdin, stdout and
+/// stderr are its slave side, as at an interactive shell) and returns everything it
+/// printed, in order, as the terminal received it (newlines arrive as "\r\n"); `out`
+/// holds it and `err` is empty. Fails the test on timeout (60 s, the child is killed).
+RunResult runSoftsubInTerminal(const std::string& args, const fs::path& cwd);
+
 /// Single-quotes `s` for the shell.
 std::string quote(const fs::path& s);
 

@@ -1,0 +1,57 @@
+// `softsub run` at a terminal (a pseudo-terminal made by the test): the progress line
+// redrawn in place, the summary at the end, and silence with --quiet. The other tests
+// run softsub with its output in files, where it prints nothing but errors.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "app_test_util.h"
+
+namespace softsub::apptest {
+namespace {
+
+TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "two-fluids.scene";
+  const RunResult r = runSoftsubInTerminal(
+      "run --frames 3 --formats sim -drawPerFrame 1 --out " + quote(tmp / "o") + " " + quote(scene),
+      tmp.path());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string& t = r.out;
+  // Every draw starts with \r and rewrites the line in place; the first frame is always
+  // drawn, and so is the last.
+  const std::size_t first = t.find("\rframe 1/3 | 1,728 particles | ");
+  ASSERT_NE(first, std::string::npos) << t;
+  const std::size_t last = t.find("\rframe 3/3 | 1,728 particles | ");
+  ASSERT_NE(last, std::string::npos) << t;
+  EXPECT_LT(first, last);
+  EXPECT_NE(t.find(" ms/frame | ETA ", first), std::string::npos) << t;
+  EXPECT_NE(t.find(" ms/frame | ETA 0:00", last), std::string::npos) << t;  // nothing left
+  // The line is ended before the summary, which comes last.
+  const std::size_t done = t.find("\r\ndone: 3 frames, 1,728 particles, ");
+  ASSERT_NE(done, std::string::npos) << t;
+  EXPECT_LT(last, done);
+  EXPECT_NE(t.find(" ms/frame), output: " + (tmp / "o").string() + "/\r\n", done), std::string::npos) << t;
+  EXPECT_NE(t.find("note: -drawPerFrame applies to the viewer"), std::string::npos) << t;
+  EXPECT_EQ(listFiles(tmp / "o").size(), 4u);
+}
+
+TEST(Terminal, QuietPrintsNothingEvenAtATerminal) {
+  TempDir tmp;
+  const RunResult r = runSoftsubInTerminal(
+      "run --quiet --frames 2 -drawPerFrame 1 --formats none " + quote(examplesDir() / "two-fluids.scene"),
+      tmp.path());
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(Terminal, ErrorsStillShowAtATerminal) {
+  TempDir tmp;
+  const RunResult r = runSoftsubInTerminal("run --frames=-5", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind("error: command line: --frames: -5 is out of range", 0), 0u) << r.out;
+  EXPECT_TRUE(listEntries(tmp.path()).empty());
+}
+
+}  // namespace
+}  // namespace softsub::apptest
