@@ -169,9 +169,9 @@ int runCommand(const RunOptions& o) {
     return static_cast<int>(ExitCode::Interrupted);
   }
   if (chatty)
-    fmt::print(stderr, "done: {} frames, {} particles, {:.2f} s ({:.1f} ms/frame), output: {}\n",
-               progress.framesDone(), groupThousands(particles), seconds, progress.secondsPerFrame() * 1e3,
-               where);
+    fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}\n",
+               countOf(static_cast<std::uint64_t>(progress.framesDone()), "frame"),
+               countOf(particles, "particle"), seconds, progress.secondsPerFrame() * 1e3, where);
   return static_cast<int>(ExitCode::Ok);
 }
 

@@ -29,14 +29,16 @@ int runApp(int argc, char** argv) {
                 "softsub"};
   root.set_version_flag("--version", std::string("softsub ") + SOFTSUB_VERSION);
   root.require_subcommand(1);
-  root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
-              "-updateNum, -stopRecordingAt, -drawPerFrame) imply 'run'.");
 
   app::RunOptions runOptions;
   app::InfoOptions infoOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
   CLI::App* schema = app::addSchemaCommand(root);
+  // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
+  // added, and this one is for the root's help only.
+  root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
+              "-updateNum, -stopRecordingAt, -drawPerFrame) imply 'run'.");
 
   const std::vector<std::string> given(argv, argv + argc);
   const std::vector<std::string> args = app::rewriteSeedFlags(given);

@@ -33,8 +33,8 @@ void ProgressLine::update(const solver::FrameProgress& p) {
 
 void ProgressLine::draw(std::int64_t frame) {
   const double remaining = static_cast<double>(last_ - frame) * secondsPerFrame();
-  std::string line = fmt::format("frame {}/{} | {} particles | {:.1f} ms/frame | ETA {}", frame, last_,
-                                 groupThousands(particles_), secondsPerFrame() * 1e3,
+  std::string line = fmt::format("frame {}/{} | {} | {:.1f} ms/frame | ETA {}", frame, last_,
+                                 countOf(particles_, "particle"), secondsPerFrame() * 1e3,
                                  clockTime(remaining));
   const std::size_t len = line.size();
   if (len < width_) line.append(width_ - len, ' ');  // clear what a longer line left

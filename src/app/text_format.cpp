@@ -18,6 +18,10 @@ std::string groupThousands(std::uint64_t n) {
   return out;
 }
 
+std::string countOf(std::uint64_t n, std::string_view noun) {
+  return fmt::format("{} {}{}", groupThousands(n), noun, n == 1 ? "" : "s");
+}
+
 std::string clockTime(double seconds) {
   const auto s = static_cast<std::int64_t>(std::llround(std::max(0.0, seconds)));
   if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);

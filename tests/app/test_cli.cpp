@@ -24,6 +24,16 @@ TEST(Cli, HelpOnEveryCommandExitsZero) {
   EXPECT_TRUE(listEntries(tmp.path()).empty());
 }
 
+TEST(Cli, TheCommandsFooterIsOnTheRootHelpOnly) {
+  TempDir tmp;
+  const std::string footer = "Run 'softsub COMMAND --help'";
+  EXPECT_NE(runSoftsub("--help", tmp.path()).out.find(footer), std::string::npos);
+  for (const char* args : {"run --help", "info --help", "schema --help"}) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.out.find(footer), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
 TEST(Cli, VersionPrintsTheProjectVersion) {
   TempDir tmp;
   const RunResult r = runSoftsub("--version", tmp.path());

@@ -45,6 +45,15 @@ TEST(Terminal, QuietPrintsNothingEvenAtATerminal) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+TEST(Terminal, OneFrameIsSingular) {
+  TempDir tmp;
+  const RunResult r = runSoftsubInTerminal(
+      "run --frames 1 --formats none " + quote(examplesDir() / "two-fluids.scene"), tmp.path());
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\r\ndone: 1 frame, 1,728 particles, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("output: nothing written\r\n"), std::string::npos) << r.out;
+}
+
 TEST(Terminal, ErrorsStillShowAtATerminal) {
   TempDir tmp;
   const RunResult r = runSoftsubInTerminal("run --frames=-5", tmp.path());
