@@ -88,7 +88,8 @@ constexpr Field<EnvironmentDesc> kEnvironment[] = {
          .meaning = "restitution e: normal velocity after a wall contact = -e times before"}),
     field<&EnvironmentDesc::tangentAttenuation>(
         {.tag = "TangentAttenuation", .kind = Kind::Real, .unit = "-", .range = kUnitInterval,
-         .meaning = "friction: tangential velocity after contact = (1 - this) times before"}),
+         .meaning = "friction: the seed's tangential attenuation at impacts, Coulomb friction in "
+                    "resting contact; see docs"}),
     field<&EnvironmentDesc::closed>({.tag = "Closed", .kind = Kind::Bool, .unit = "-",
                                      .meaning = "extension: a lid at y = Height too (a jar)"}),
 };
