@@ -22,7 +22,7 @@ struct Container {
   std::array<double, 3> hi{0, 0, 0};
   bool closed = false;      ///< lid at hi.y
   double restitution = 0.5; ///< normal velocity after contact = -restitution * before
-  double friction = 0.1;    ///< tangential velocity after contact *= (1 - friction)
+  double friction = 0.1;    ///< impacts: v_t *= (1 - friction); resting contact: Coulomb coefficient
 };
 
 /// A fluid as the solver and the outputs see it.

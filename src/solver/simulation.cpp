@@ -25,18 +25,27 @@ double Simulation::time() const {
   return static_cast<double>(state_.frame) / model_.framesPerSecond;
 }
 
-// The list stays valid while no particle has moved half the skin since it was built:
-// two particles then cannot have closed more than the skin, so every pair now within
-// its cutoff is listed.
+// The list stays valid while no two particles can have closed more than the skin since
+// it was built: a pair closes by at most the sum of its two displacements, so the sum
+// of the two largest displacements is checked (less often stale than twice the
+// largest when one particle flies off alone).
 bool Simulation::listIsStale() const {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
-  const float limit = 0.25f * skin_ * skin_;
+  float first = 0, second = 0;  // the two largest squared displacements
   for (std::size_t i = 0; i < s.size(); ++i) {
     const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
-    if (!(dx * dx + dy * dy + dz * dz < limit)) return true;  // NaN also rebuilds
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    if (!(d2 <= second)) {  // NaN lands here too
+      if (!(d2 <= first)) {
+        second = first;
+        first = d2;
+      } else {
+        second = d2;
+      }
+    }
   }
-  return false;
+  return !(std::sqrt(first) + std::sqrt(second) < skin_);  // NaN also rebuilds
 }
 
 void Simulation::computeForces() {
