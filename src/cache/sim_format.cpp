@@ -13,37 +13,13 @@
 #include "cache/atomic_file.h"
 #include "cache/message.h"
 #include "core/error.h"
+#include "core/xml_text.h"
 
 namespace softsub::cache {
 namespace {
 
 // ---------------------------------------------------------------------------------------
 // Writing
-
-/// Appends `s` as XML character data. Characters XML 1.0 cannot carry at all (control
-/// characters other than tab, newline and carriage return) are refused rather than
-/// written as a file no reader accepts.
-void appendEscaped(std::string& out, std::string_view s, std::string_view element) {
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      case '\r': out += "&#13;"; break;  // a raw CR would be read back as LF
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') {
-          throw InputError(
-              {"", 0, std::string(element)},
-              fmt::format("name contains control character {:#04x}", static_cast<unsigned char>(c)),
-              "characters XML 1.0 can hold: no control characters but tab "
-              "and line breaks");
-        }
-        out += c;
-    }
-  }
-}
 
 void appendFluid(std::string& out, const FluidSnapshot& fluid) {
   const std::size_t n = fluid.count();
@@ -53,7 +29,7 @@ void appendFluid(std::string& out, const FluidSnapshot& fluid) {
   }
   auto it = std::back_inserter(out);
   out += "  <Fluid>\n    <Name>";
-  appendEscaped(out, fluid.name, "Fluid/Name");
+  appendXmlEscaped(out, fluid.name, "Fluid/Name");
   fmt::format_to(it, "</Name>\n    <ParticleNumber>{}</ParticleNumber>\n    <Particles>\n", n);
   const float* p = fluid.positions.data();
   // `{}` is the shortest text that reads back to the same float: positions round-trip
@@ -65,14 +41,14 @@ void appendFluid(std::string& out, const FluidSnapshot& fluid) {
 void appendObject(std::string& out, const SimObject& object) {
   auto it = std::back_inserter(out);
   out += "  <Object>\n    <Name>";
-  appendEscaped(out, object.name, "Object/Name");
+  appendXmlEscaped(out, object.name, "Object/Name");
   fmt::format_to(it, "</Name>\n    <UniformScale>{}</UniformScale>\n", object.uniformScale);
   fmt::format_to(it, "    <Position>{} {} {}</Position>\n", object.position[0], object.position[1],
                  object.position[2]);
   fmt::format_to(it, "    <Rotation>{} {} {} {}</Rotation>\n", object.rotation[0],
                  object.rotation[1], object.rotation[2], object.rotation[3]);
   out += "    <Filename>";
-  appendEscaped(out, object.filename, "Object/Filename");
+  appendXmlEscaped(out, object.filename, "Object/Filename");
   out += "</Filename>\n  </Object>\n";
 }
 

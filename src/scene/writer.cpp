@@ -11,27 +11,12 @@
 #include <variant>
 
 #include "core/error.h"
+#include "core/xml_text.h"
 #include "scene/schema.h"
 
 namespace softsub::scene {
 
 namespace {
-
-std::string escapeXml(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // Indented XML output, two spaces a level.
 class XmlOut {
@@ -52,7 +37,8 @@ class XmlOut {
   template <class S>
   void fields(std::span<const Field<S>> table, const S& s) {
     for (const Field<S>& f : table) {
-      const std::string value = escapeXml(formatValue(f, f.get(s)));
+      std::string value;
+      appendXmlEscaped(value, formatValue(f, f.get(s)), f.tag);
       if (value.empty()) {
         line(fmt::format("<{}/>", f.tag));
       } else if (value.find('\n') == std::string::npos) {

@@ -67,53 +67,27 @@ void Simulation::computeForces() {
   state_.forcesValid = true;
 }
 
-// Explicit Euler (the seed's): x += v dt, v += a(x, v) dt, both from the old state.
-// Symplectic Euler: v += a dt first, then x += v_new dt.
-void Simulation::integrateEuler(bool symplectic) {
+// v += (f / m + g) h for every particle.
+void Simulation::kick(float h) {
   ParticleStore& s = state_.particles;
-  const float dt = static_cast<float>(model_.dt());
-  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
-              gz = static_cast<float>(model_.gravity.z());
-  const MaterialInfo* mats = model_.materials.data();
-  const std::size_t n = s.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const float im = mats[s.material[i]].inverseMass;
-    const float ax = s.fx[i] * im + gx, ay = s.fy[i] * im + gy, az = s.fz[i] * im + gz;
-    if (symplectic) {
-      s.vx[i] += ax * dt; s.vy[i] += ay * dt; s.vz[i] += az * dt;
-      s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
-    } else {
-      s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
-      s.vx[i] += ax * dt; s.vy[i] += ay * dt; s.vz[i] += az * dt;
-    }
-  }
-}
-
-// Velocity Verlet: v += a_n dt/2; x += v dt; (walls; forces at x_{n+1} with the
-// half-step velocity); v += a_{n+1} dt/2.
-void Simulation::integrateVerletFirstHalf() {
-  ParticleStore& s = state_.particles;
-  const float dt = static_cast<float>(model_.dt());
-  const float h = 0.5f * dt;
   const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
               gz = static_cast<float>(model_.gravity.z());
   const MaterialInfo* mats = model_.materials.data();
   for (std::size_t i = 0; i < s.size(); ++i) {
     const float im = mats[s.material[i]].inverseMass;
-    s.vx[i] += (s.fx[i] * im + gx) * h; s.vy[i] += (s.fy[i] * im + gy) * h; s.vz[i] += (s.fz[i] * im + gz) * h;
-    s.px[i] += s.vx[i] * dt; s.py[i] += s.vy[i] * dt; s.pz[i] += s.vz[i] * dt;
+    s.vx[i] += (s.fx[i] * im + gx) * h;
+    s.vy[i] += (s.fy[i] * im + gy) * h;
+    s.vz[i] += (s.fz[i] * im + gz) * h;
   }
 }
 
-void Simulation::integrateVerletSecondHalf() {
+// x += v dt for every particle.
+void Simulation::drift(float dt) {
   ParticleStore& s = state_.particles;
-  const float h = 0.5f * static_cast<float>(model_.dt());
-  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
-              gz = static_cast<float>(model_.gravity.z());
-  const MaterialInfo* mats = model_.materials.data();
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const float im = mats[s.material[i]].inverseMass;
-    s.vx[i] += (s.fx[i] * im + gx) * h; s.vy[i] += (s.fy[i] * im + gy) * h; s.vz[i] += (s.fz[i] * im + gz) * h;
+    s.px[i] += s.vx[i] * dt;
+    s.py[i] += s.vy[i] * dt;
+    s.pz[i] += s.vz[i] * dt;
   }
 }
 
@@ -161,21 +135,35 @@ void Simulation::applyWalls() {
   }
 }
 
+// The integrators, from kicks (velocity) and drifts (position):
+//   explicit Euler (the seed's): forces at (x_n, v_n); x += v_n dt; v += a dt
+//   symplectic Euler:            forces at (x_n, v_n); v += a dt; x += v_{n+1} dt
+//   velocity Verlet:             v += a_n dt/2; x += v dt; forces at x_{n+1} (with the
+//                                half-step velocity); v += a_{n+1} dt/2
 void Simulation::step() {
+  const float dt = static_cast<float>(model_.dt());
   switch (model_.integrator) {
     case Integrator::ExplicitEuler:
+      computeForces();
+      drift(dt);
+      kick(dt);
+      applyWalls();
+      state_.forcesValid = false;
+      break;
     case Integrator::SymplecticEuler:
       computeForces();
-      integrateEuler(model_.integrator == Integrator::SymplecticEuler);
+      kick(dt);
+      drift(dt);
       applyWalls();
       state_.forcesValid = false;
       break;
     case Integrator::VelocityVerlet:
       if (!state_.forcesValid) computeForces();
-      integrateVerletFirstHalf();
+      kick(0.5f * dt);
+      drift(dt);
       applyWalls();
       computeForces();
-      integrateVerletSecondHalf();
+      kick(0.5f * dt);
       break;
   }
 }

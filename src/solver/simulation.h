@@ -45,9 +45,8 @@ class Simulation {
  private:
   void computeForces();            // stages 2-3: grid + pair list when stale, pair forces
   [[nodiscard]] bool listIsStale() const;
-  void integrateEuler(bool symplectic);
-  void integrateVerletFirstHalf();
-  void integrateVerletSecondHalf();
+  void kick(float h);    // v += (f/m + g) h
+  void drift(float dt);  // x += v dt
   void applyWalls();
 
   const Model& model_;

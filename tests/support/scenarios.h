@@ -10,18 +10,24 @@
 
 namespace softsub::scenarios {
 
-/// The seed's benchmark situation: one fluid of `n` particles as a cubic lattice block
-/// (spacing `spacing`) resting above the floor of a container, symplectic Euler, 8
-/// substeps at 24 fps. Model parameters are the scene defaults (fluid::FluidParams).
-inline void fluidBlock(std::size_t n, double spacing, solver::Model& model, solver::State& state) {
-  const auto side = static_cast<std::size_t>(std::ceil(std::cbrt(static_cast<double>(n))));
+/// A model of one fluid "goo" of n particles with the scene-default parameters.
+inline solver::Model oneFluidModel(std::size_t n) {
   fluid::FluidParams p;
-  model = solver::Model{};
+  solver::Model model;
   model.fluids.push_back({"goo", {0.8f, 0.5f, 0.2f}, p.particleSize, p.particleMass, 0,
                           static_cast<std::uint32_t>(n)});
   model.materials.push_back({static_cast<float>(1 / p.particleMass), static_cast<float>(p.particleSize / 2)});
   model.table = forces::InteractionTable(1);
   model.table.set(0, 0, {fluid::ownFunction(p), p.viscosity, 0});
+  return model;
+}
+
+/// The seed's benchmark situation: one fluid of `n` particles as a cubic lattice block
+/// (spacing `spacing`) resting above the floor of a container, symplectic Euler, 8
+/// substeps at 24 fps. Model parameters are the scene defaults (fluid::FluidParams).
+inline void fluidBlock(std::size_t n, double spacing, solver::Model& model, solver::State& state) {
+  const auto side = static_cast<std::size_t>(std::ceil(std::cbrt(static_cast<double>(n))));
+  model = oneFluidModel(n);
   const double width = static_cast<double>(side) * spacing + 4;
   solver::Container c;
   c.lo = {-width, 0, -width};
@@ -47,13 +53,7 @@ inline void fluidPool(std::size_t n, double spacing, std::size_t layers, solver:
                       solver::State& state) {
   const auto side = static_cast<std::size_t>(
       std::ceil(std::sqrt(static_cast<double>(n) / static_cast<double>(layers))));
-  fluid::FluidParams p;
-  model = solver::Model{};
-  model.fluids.push_back({"goo", {0.8f, 0.5f, 0.2f}, p.particleSize, p.particleMass, 0,
-                          static_cast<std::uint32_t>(n)});
-  model.materials.push_back({static_cast<float>(1 / p.particleMass), static_cast<float>(p.particleSize / 2)});
-  model.table = forces::InteractionTable(1);
-  model.table.set(0, 0, {fluid::ownFunction(p), p.viscosity, 0});
+  model = oneFluidModel(n);
   const double half = 0.5 * static_cast<double>(side) * spacing + 0.5;
   solver::Container c;
   c.lo = {-half, 0, -half};
