@@ -135,8 +135,8 @@ constexpr Field<FluidDesc> kFluid[] = {
         {.tag = "ParticleSize", .kind = Kind::Real, .unit = "units", .range = kPositive,
          .meaning = "particle diameter (display, walls, surfaces)"}),
     field<&FluidDesc::params, &FluidParams::particleMass>(
-        {.tag = "ParticleMass", .kind = Kind::Real, .unit = "mass", .range = kPositive,
-         .meaning = "extension: mass of one particle"}),
+        {.tag = "ParticleMass", .kind = Kind::Real, .unit = "mass", .range = Range{1e-30, 1e30},
+         .meaning = "extension: mass of one particle (its inverse must fit in single precision)"}),
     field<&FluidDesc::initialSpeed>({.tag = "InitialSpeed", .kind = Kind::Vec3,
                                      .unit = "units/s",
                                      .meaning = "initial velocity of every particle"}),
