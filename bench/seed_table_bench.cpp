@@ -1,6 +1,7 @@
 // The seed's table (report 3.4.1): time per frame of 8 substeps for one fluid of
-// 1,000 .. 200,000 particles in a container (the Time column, ms per frame), plus
-// particle-steps per second and bytes per particle.
+// 1,000 .. 1,000,000 particles in a container (BM_SeedFrame; the Time column is ms per
+// frame), and a slumping cube in full motion (BM_SlumpingCube); plus particle-steps per
+// second, bytes per particle and substeps per pair list. See docs/benchmarks.md.
 // Run: build-bench/bench/softsub-bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 

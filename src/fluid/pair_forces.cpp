@@ -109,7 +109,7 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
       const forces::PairEntry& e = row[mat[j]];
       if (!(r2 < e.cutoff2)) continue;  // listed within the skin, not in range now
       const float r = std::sqrt(r2);
-      // Coincident particles have no direction: only the velocity terms act.
+      // Coincident particles have no direction: only the damping term acts.
       const float inv = r > 0 ? 1.0f / r : 0.0f;
       const float t = r * e.invDr;
       const std::uint32_t k = std::min(static_cast<std::uint32_t>(t), e.lastPiece);

@@ -11,8 +11,9 @@
 namespace softsub::fluid {
 
 /// A half pair list (Verlet list): for each slot i, the slots j of every pair within
-/// its cutoff plus a skin, each unordered pair once. Valid while no particle has moved
-/// more than skin/2 since build() and the store has not been reordered.
+/// its cutoff plus a skin, each unordered pair once. Valid while the two largest
+/// displacements since build() add up to less than the skin and the store has not been
+/// reordered (solver::Simulation checks both).
 class PairList {
  public:
   /// Lists every pair closer than (row cutoff + skin) using `grid` (rebuilt on `store`).

@@ -77,7 +77,7 @@ class InteractionTable {
   [[nodiscard]] std::span<const float> samples() const { return samples_; }
   /// Squared longest cutoff of material a with any material (kernel pre-filter).
   [[nodiscard]] float rowCutoff2(std::size_t a) const { return rowCutoff2_[a]; }
-  /// The longest cutoff of any pair: the neighbour grid's cell size.
+  /// The longest cutoff of any pair (the grid's cell size is this plus the list skin).
   [[nodiscard]] double maxCutoff() const;
   /// The sampled function of (a, b) evaluated at r, as the kernel does.
   [[nodiscard]] double sampledAt(std::size_t a, std::size_t b, double r) const;

@@ -65,7 +65,7 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
 
   // Forward neighbour ranges of every cell. The 13 forward cells lie in 5 rows of
   // constant (y, z); since cells are sorted by (z, y, x) and each row's target keys grow
-  // with c, one cursor per row walks the sorted cell keys (amortised O(1) per lookup).
+  // with c, one cursor per offset walks the sorted cell keys (amortised O(1) per lookup).
   // Offsets that wrap around the 21-bit torus use the hash table instead.
   const std::size_t cells = cellCount();
   rangeStart_.resize(cells + 1);

@@ -1,6 +1,6 @@
 #pragma once
-/// The neighbour grid: particles sorted by cell, cells found through a hash of their
-/// coordinates. Memory is O(particles) whatever the spatial extent.
+/// The neighbour grid: particles sorted by cell, neighbour cells found by walking the
+/// sorted cell keys. Memory is O(particles) whatever the spatial extent.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -15,7 +15,7 @@ struct SlotRange {
   std::uint32_t end = 0;
 };
 
-/// Uniform cell list with cells as large as the longest interaction distance.
+/// Uniform cell list; the caller picks the cell size (the solver: longest cutoff + skin).
 ///
 /// Why this layout: cell coordinates are wrapped to 21 bits per axis and packed into
 /// one 64-bit key (z, y, x). Sorting particles by key puts each cell's particles next
