@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config  # compiler and build tools
-  libeigen3-dev libpugixml-dev libfmt-dev libcli11-dev  # libraries softsub links
+  libeigen3-dev libpugixml-dev libfmt-dev libcli11-dev libassimp-dev  # libraries softsub links
   googletest libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
 )
 
