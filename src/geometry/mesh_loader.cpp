@@ -1,0 +1,265 @@
+#include "geometry/mesh_loader.h"
+
+#include <array>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace softsub::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+using Mat4 = Eigen::Matrix4d;
+
+Mat4 toEigen(const aiMatrix4x4& m) {
+  Mat4 out;
+  for (unsigned r = 0; r < 4; ++r)
+    for (unsigned c = 0; c < 4; ++c) out(r, c) = static_cast<double>(m[r][c]);
+  return out;
+}
+
+/// Hash of a position's exact bit pattern (after folding -0 onto +0), for welding.
+struct PositionHash {
+  std::size_t operator()(const std::array<double, 3>& p) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (double x : p) h = (h ^ std::bit_cast<std::uint64_t>(x + 0.0)) * 0x100000001b3ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+/// Collects triangles from every node instance, welding equal positions as it goes.
+class MeshBuilder {
+ public:
+  explicit MeshBuilder(std::string file) : file_(std::move(file)) {}
+
+  [[nodiscard]] const std::string& file() const { return file_; }
+
+  /// Appends `mesh` placed by `transform`.
+  void add(const aiMesh& mesh, unsigned meshIndex, const Mat4& transform) {
+    const bool mirrored = transform.topLeftCorner<3, 3>().determinant() < 0;
+    std::vector<std::uint32_t> local(mesh.mNumVertices);
+    for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+      const aiVector3D& p = mesh.mVertices[i];
+      const Vec3 raw(static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z));
+      const Vec3 v = (transform * raw.homogeneous()).head<3>();
+      if (!raw.allFinite() || !v.allFinite())
+        throw InputError(
+            {file_, 0, "mesh"},
+            fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {}){}", i, meshIndex,
+                        mesh.mName.length > 0 ? fmt::format(" '{}'", mesh.mName.C_Str()) : "", raw.x(),
+                        raw.y(), raw.z(), raw.allFinite() ? " after its node's transform" : ""),
+            "finite coordinates");
+      local[i] = weld(v);
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) {
+        ++otherPrimitives_;
+        continue;
+      }
+      std::array<std::uint32_t, 3> t{};
+      bool inRange = true;
+      for (unsigned k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh.mNumVertices) {
+          inRange = false;
+          break;
+        }
+        t[k] = local[face.mIndices[k]];
+      }
+      if (!inRange) {
+        ++outOfRange_;
+        continue;
+      }
+      if (mirrored) std::swap(t[1], t[2]);
+      if (isDegenerate(t)) {
+        ++degenerate_;
+        continue;
+      }
+      mesh_.triangles.push_back(t);
+    }
+  }
+
+  /// The mesh without unused vertices; warnings and counts go to `report`.
+  TriangleMesh finish(MeshLoadReport* report) {
+    compact();
+    if (report != nullptr) {
+      report->droppedTriangles += degenerate_ + outOfRange_;
+      if (degenerate_ > 0)
+        report->warnings.push_back(
+            fmt::format("dropped {} degenerate triangle(s) (a repeated vertex or zero area)", degenerate_));
+      if (outOfRange_ > 0)
+        report->warnings.push_back(
+            fmt::format("dropped {} triangle(s) with a vertex index out of range", outOfRange_));
+      if (otherPrimitives_ > 0)
+        report->warnings.push_back(fmt::format("ignored {} point or line primitive(s)", otherPrimitives_));
+    }
+    if (mesh_.triangles.empty())
+      throw InputError({file_, 0, "mesh"}, "the mesh has no triangles",
+                       "at least one triangle with non-zero area");
+    return std::move(mesh_);
+  }
+
+ private:
+  std::uint32_t weld(const Vec3& v) {
+    const std::array<double, 3> key{v.x() + 0.0, v.y() + 0.0, v.z() + 0.0};
+    const auto [it, added] = index_.try_emplace(key, static_cast<std::uint32_t>(mesh_.vertices.size()));
+    if (added) {
+      if (mesh_.vertices.size() >= std::numeric_limits<std::uint32_t>::max())
+        throw InputError({file_, 0, "mesh"}, "the mesh has too many vertices", "fewer than 2^32");
+      mesh_.vertices.push_back(v);
+    }
+    return it->second;
+  }
+
+  /// A repeated vertex, or an area that is zero to rounding.
+  [[nodiscard]] bool isDegenerate(const std::array<std::uint32_t, 3>& t) const {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+    const Vec3 e1 = mesh_.vertices[t[1]] - mesh_.vertices[t[0]];
+    const Vec3 e2 = mesh_.vertices[t[2]] - mesh_.vertices[t[0]];
+    const double scale = std::max(e1.squaredNorm(), e2.squaredNorm());
+    return !(e1.cross(e2).norm() > 1e-12 * scale);
+  }
+
+  void compact() {
+    constexpr std::uint32_t unused = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> remap(mesh_.vertices.size(), unused);
+    std::vector<Vec3> kept;
+    for (auto& t : mesh_.triangles)
+      for (std::uint32_t& i : t) {
+        if (remap[i] == unused) {
+          remap[i] = static_cast<std::uint32_t>(kept.size());
+          kept.push_back(mesh_.vertices[i]);
+        }
+        i = remap[i];
+      }
+    mesh_.vertices = std::move(kept);
+  }
+
+  std::string file_;
+  TriangleMesh mesh_;
+  std::unordered_map<std::array<double, 3>, std::uint32_t, PositionHash> index_;
+  std::size_t degenerate_ = 0;
+  std::size_t outOfRange_ = 0;
+  std::size_t otherPrimitives_ = 0;
+};
+
+void addNode(const aiScene& scene, const aiNode& node, const Mat4& parent, MeshBuilder& out, int depth) {
+  // A malformed file could nest (or loop) nodes without end; real scenes are shallow.
+  if (depth > 1000)
+    throw InputError({out.file(), 0, "mesh"}, "the node tree is too deep", "at most 1000 levels");
+  const Mat4 transform = parent * toEigen(node.mTransformation);
+  for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+    const unsigned m = node.mMeshes[i];
+    if (m < scene.mNumMeshes && scene.mMeshes[m] != nullptr) out.add(*scene.mMeshes[m], m, transform);
+  }
+  for (unsigned i = 0; i < node.mNumChildren; ++i)
+    if (node.mChildren[i] != nullptr) addNode(scene, *node.mChildren[i], transform, out, depth + 1);
+}
+
+/// Refuses what cannot or should not be read, before assimp sees the file.
+std::uintmax_t checkReadable(const fs::path& file, const std::string& name) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (ec || !fs::exists(status))
+    throw IoError(
+        fmt::format("{}: cannot read the mesh: {}", name, ec ? ec.message() : std::string("no such file")));
+  if (fs::is_directory(status)) throw IoError(fmt::format("{}: cannot read the mesh: it is a folder", name));
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot read the mesh: {}", name, ec.message()));
+  if (size > kMaxMeshFileBytes)
+    throw InputError({name, 0, "mesh"}, fmt::format("the file is {} bytes", size), "at most 1 GiB");
+  errno = 0;
+  std::ifstream probe(file, std::ios::binary);
+  if (!probe)
+    throw IoError(fmt::format("{}: cannot read the mesh: {}", name,
+                              errno != 0 ? std::strerror(errno) : "cannot open the file"));
+  return size;
+}
+
+/// assimp's PLY reader reserves memory for the element counts the header declares, so a
+/// few-byte file claiming billions of vertices would exhaust memory. Every element with
+/// a property takes at least one byte, so the counts cannot add up to more than the file.
+void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_t size) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  // assimp recognises PLY by its first line whatever the file's extension.
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
+  std::string element;
+  std::uintmax_t count = 0;
+  std::uintmax_t declared = 0;
+  bool hasProperty = false;
+  auto close = [&] {
+    if (hasProperty) declared += count;
+  };
+  for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "end_header") break;
+    if (word == "element") {
+      close();
+      std::string countText;
+      words >> element >> countText;
+      count = 0;
+      for (char ch : countText) {
+        if (ch < '0' || ch > '9' || count > size) break;
+        count = count * 10 + static_cast<std::uintmax_t>(ch - '0');
+      }
+      hasProperty = false;
+    } else if (word == "property") {
+      hasProperty = true;
+    }
+  }
+  close();
+  if (declared > size)
+    throw InputError({name, 0, "mesh"},
+                     fmt::format("the PLY header declares more elements than a {}-byte file can hold", size),
+                     "element counts that fit in the file");
+}
+
+}  // namespace
+
+TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
+  const std::string name = file.string();
+  const std::uintmax_t size = checkReadable(file, name);
+  if (size == 0) throw InputError({name, 0, "mesh"}, "the mesh has no triangles (the file is empty)");
+  checkPlyCounts(file, name, size);
+
+  Assimp::Importer importer;
+  // Only steps that reshape what the file holds: nothing invents geometry (no normals,
+  // hole filling or smoothing). SortByPType puts points and lines in meshes of their own,
+  // which MeshBuilder skips; they are not removed here, so a file of points alone is
+  // reported as having no triangles rather than as an assimp failure.
+  const aiScene* scene = importer.ReadFile(
+      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (scene == nullptr) {
+    const std::string why = importer.GetErrorString();
+    throw InputError({name, 0, "mesh"},
+                     fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
+                     "a mesh file assimp reads (OBJ, PLY, STL, glTF, FBX, ...)");
+  }
+
+  MeshBuilder builder(name);
+  if (scene->mRootNode != nullptr) {
+    addNode(*scene, *scene->mRootNode, Mat4::Identity(), builder, 0);
+  } else {
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+      if (scene->mMeshes[m] != nullptr) builder.add(*scene->mMeshes[m], m, Mat4::Identity());
+  }
+  return builder.finish(report);
+}
+
+}  // namespace softsub::geometry

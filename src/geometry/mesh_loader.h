@@ -1,0 +1,38 @@
+#pragma once
+/// Reading triangle meshes from the files artists export (OBJ, PLY, STL, glTF, FBX and
+/// the other formats assimp reads), checked at the boundary so the rest of the code can
+/// trust the mesh.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+
+namespace softsub::geometry {
+
+/// What loadMesh repaired or left out, for the caller to show the user.
+struct MeshLoadReport {
+  std::vector<std::string> warnings;  ///< one line each, without the file name
+  std::size_t droppedTriangles = 0;   ///< degenerate or with out-of-range indices
+};
+
+/// Files larger than this are refused before anything is read.
+inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
+
+/// Reads every mesh of the file's scene into one triangle mesh, each placed by its
+/// node's transform (instanced meshes appear once per node). Polygons are triangulated;
+/// points and lines are ignored; vertices at exactly the same position are merged, so a
+/// closed surface exported with per-face normals or as STL comes back closed. Triangles
+/// with a repeated vertex, zero area or an out-of-range index are dropped and counted in
+/// `report`. Vertices no triangle uses are removed. A mirroring node transform has its
+/// triangles' winding reversed so orientation is kept.
+///
+/// Throws IoError when the file cannot be opened or read (message names the file and the
+/// reason); InputError {file, 0, "mesh"} when the file is larger than
+/// kMaxMeshFileBytes, when assimp cannot parse it (assimp's message), when a vertex is
+/// NaN or infinite (names the vertex), or when no triangle is left.
+[[nodiscard]] TriangleMesh loadMesh(const std::filesystem::path& file, MeshLoadReport* report = nullptr);
+
+}  // namespace softsub::geometry

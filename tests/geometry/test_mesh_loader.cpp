@@ -1,0 +1,284 @@
+// Loading meshes from files the test writes: the formats, node transforms, and every
+// kind of bad input the loader must refuse or repair.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "geometry/mass_properties.h"
+#include "geometry/mesh_loader.h"
+#include "support/meshes.h"
+
+namespace softsub::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+using scenarios::signedVolume;
+
+/// A fresh folder under the system temporary folder, removed at the end of the test.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("softsub-mesh-loader-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  /// Writes `bytes` to `name` inside the folder and returns its path.
+  [[nodiscard]] fs::path write(const std::string& name, const std::string& bytes) const {
+    const fs::path p = path_ / name;
+    std::ofstream(p, std::ios::binary) << bytes;
+    return p;
+  }
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// The unit cube [0,1]³ as quads counter-clockwise from outside, with one normal per face
+// so assimp keeps per-face vertex copies that the loader has to weld.
+const char* const kCubeObj = R"(# unit cube
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v 1 1 0
+v 0 0 1
+v 1 0 1
+v 0 1 1
+v 1 1 1
+vn -1 0 0
+vn 1 0 0
+vn 0 -1 0
+vn 0 1 0
+vn 0 0 -1
+vn 0 0 1
+f 1//1 5//1 7//1 3//1
+f 2//2 4//2 8//2 6//2
+f 1//3 2//3 6//3 5//3
+f 3//4 7//4 8//4 4//4
+f 1//5 3//5 4//5 2//5
+f 5//6 6//6 8//6 7//6
+)";
+
+void expectUnitCube(const TriangleMesh& m) {
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_NEAR(signedVolume(m), 1.0, 1e-12);
+  // Welded and closed: the mass properties accept it.
+  const MassProperties p = meshMassProperties(m, 1.0);
+  EXPECT_LT((p.centerOfMass - Vec3(0.5, 0.5, 0.5)).norm(), 1e-12);
+}
+
+/// Runs `load` and returns the InputError it throws (fails the test if it throws none).
+template <class F>
+InputError expectInputError(F load) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError";
+  return InputError({}, "none");
+}
+
+TEST(LoadMesh, ObjQuadsAreTriangulatedAndWelded) {
+  TempDir dir;
+  MeshLoadReport report;
+  const TriangleMesh m = loadMesh(dir.write("cube.obj", kCubeObj), &report);
+  expectUnitCube(m);
+  EXPECT_EQ(report.droppedTriangles, 0u);
+  EXPECT_TRUE(report.warnings.empty());
+}
+
+TEST(LoadMesh, AsciiStl) {
+  // The same cube as independent facets, the way STL stores it.
+  const Vec3 corner[8] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
+                          {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  std::string stl = "solid cube\n";
+  for (const auto& q : quads)
+    for (const auto& tri : {std::array{q[0], q[1], q[2]}, std::array{q[0], q[2], q[3]}}) {
+      stl += "facet normal 0 0 0\nouter loop\n";
+      for (int k : tri) {
+        const Vec3& v = corner[k];
+        stl += "vertex " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) +
+               "\n";
+      }
+      stl += "endloop\nendfacet\n";
+    }
+  stl += "endsolid cube\n";
+  TempDir dir;
+  expectUnitCube(loadMesh(dir.write("cube.stl", stl)));
+}
+
+TEST(LoadMesh, AsciiPly) {
+  const char* const ply = R"(ply
+format ascii 1.0
+element vertex 4
+property float x
+property float y
+property float z
+element face 4
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+0 1 0
+0 0 1
+3 0 2 1
+3 0 1 3
+3 0 3 2
+3 1 2 3
+)";
+  TempDir dir;
+  const TriangleMesh m = loadMesh(dir.write("tet.ply", ply));
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(m.vertices.size(), 4u);
+  EXPECT_NEAR(signedVolume(m), 1.0 / 6.0, 1e-12);
+}
+
+TEST(LoadMesh, GltfNodeTransformsPlaceEachInstance) {
+  // One triangle in a binary buffer, used by two nodes: one translated by (10, 0, 0),
+  // one scaled by -1 along x (a mirror, whose winding the loader reverses).
+  TempDir dir;
+  std::string bin(48, '\0');
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[3] = {0, 1, 2};
+  std::memcpy(bin.data(), positions, sizeof positions);
+  std::memcpy(bin.data() + 36, indices, sizeof indices);
+  (void)dir.write("tri.bin", bin);
+  const char* const gltf = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0, "translation": [10, 0, 0]}, {"mesh": 0, "scale": [-1, 1, 1]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+  "buffers": [{"uri": "tri.bin", "byteLength": 48}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                  {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]
+})";
+  const TriangleMesh m = loadMesh(dir.write("two.gltf", gltf));
+  ASSERT_EQ(m.triangles.size(), 2u);
+  const Aabb box = m.bounds();
+  EXPECT_DOUBLE_EQ(box.lo[0], -1.0);
+  EXPECT_DOUBLE_EQ(box.hi[0], 11.0);
+  // Both triangles keep facing +z (counter-clockwise seen from +z).
+  for (const auto& t : m.triangles) {
+    const Vec3 n = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
+    EXPECT_GT(n.z(), 0.0);
+  }
+}
+
+TEST(LoadMesh, MissingFileOrFolderIsAnIoError) {
+  TempDir dir;
+  const fs::path missing = dir.path() / "nope.obj";
+  try {
+    (void)loadMesh(missing);
+    ADD_FAILURE() << "no IoError";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing.string()), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)loadMesh(dir.path()), IoError);
+}
+
+TEST(LoadMesh, UnparsableFilesAreInputErrors) {
+  TempDir dir;
+  std::string noise;
+  for (int i = 0; i < 4096; ++i) noise += static_cast<char>((i * 7919 + 13) % 251);
+  for (const char* name : {"garbage.ply", "garbage.stl", "garbage.obj", "garbage.xyz"}) {
+    const fs::path p = dir.write(name, noise);
+    const InputError e = expectInputError([&] { (void)loadMesh(p); });
+    EXPECT_EQ(e.where().file, p.string()) << name;
+    EXPECT_EQ(e.where().element, "mesh") << name;
+  }
+}
+
+TEST(LoadMesh, EmptyObjHasNoTriangles) {
+  TempDir dir;
+  EXPECT_NE(
+      expectInputError([&] { (void)loadMesh(dir.write("zero.obj", "")); }).problem().find("no triangles"),
+      std::string::npos);
+  for (const char* text : {"", "# nothing\n", "v 0 0 0\nv 1 0 0\nl 1 2\n"}) {
+    const fs::path p = dir.write("empty.obj", text);
+    const InputError e = expectInputError([&] { (void)loadMesh(p); });
+    EXPECT_EQ(e.where().file, p.string());
+  }
+  const InputError e =
+      expectInputError([&] { (void)loadMesh(dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")); });
+  EXPECT_NE(std::string(e.what()).find("triangle"), std::string::npos) << e.what();
+}
+
+TEST(LoadMesh, NonFiniteVertexIsNamed) {
+  TempDir dir;
+  for (const char* bad : {"nan", "inf", "1e999"}) {
+    const std::string obj = std::string("v 0 0 0\nv 1 0 0\nv 0 ") + bad + " 0\nf 1 2 3\n";
+    const InputError e = expectInputError([&] { (void)loadMesh(dir.write("bad.obj", obj)); });
+    EXPECT_NE(e.problem().find("vertex 2"), std::string::npos) << bad << ": " << e.what();
+  }
+}
+
+TEST(LoadMesh, DegenerateTrianglesAreDroppedWithAWarning) {
+  TempDir dir;
+  // The cube plus a zero-area sliver (vertex 9 lies on the edge 1-2) and a face with a
+  // repeated vertex.
+  const std::string obj = std::string(kCubeObj) + "v 0.5 0 0\nf 1 9 2\nf 3 3 4\n";
+  MeshLoadReport report;
+  const TriangleMesh m = loadMesh(dir.write("cube-extra.obj", obj), &report);
+  expectUnitCube(m);  // the unused midpoint vertex is gone too
+  EXPECT_GE(report.droppedTriangles, 1u);
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.front().find("degenerate"), std::string::npos) << report.warnings.front();
+}
+
+TEST(LoadMesh, HugeFileIsRefusedBeforeReading) {
+  TempDir dir;
+  const fs::path p = dir.write("huge.stl", "solid x\n");
+  std::error_code ec;
+  fs::resize_file(p, kMaxMeshFileBytes + 1, ec);  // sparse: no real disk use
+  if (ec) GTEST_SKIP() << "cannot make a sparse file here: " << ec.message();
+  const InputError e = expectInputError([&] { (void)loadMesh(p); });
+  EXPECT_NE(e.allowed().find("1 GiB"), std::string::npos) << e.what();
+}
+
+TEST(LoadMesh, AbsurdDeclaredCountsDoNotCrash) {
+  TempDir dir;
+  const char* const ply = R"(ply
+format ascii 1.0
+element vertex 4000000000
+property float x
+property float y
+property float z
+element face 4000000000
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+0 1 0
+3 0 1 2
+)";
+  const InputError e = expectInputError([&] { (void)loadMesh(dir.write("liar.dat", ply)); });
+  EXPECT_NE(e.problem().find("declares"), std::string::npos) << e.what();
+}
+
+}  // namespace
+}  // namespace softsub::geometry
