@@ -1,0 +1,43 @@
+#pragma once
+/// Mesh → particles (the seed's "convert to particles", report 2.2.3): lattice points of a
+/// voxel grid of the particle diameter, inside a mesh by ray parity, or on its surface.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "geometry/triangle_mesh.h"
+
+namespace softsub::geometry {
+
+/// How to fill a mesh with particles.
+struct MeshFillOptions {
+  double spacing = 1;        ///< lattice step = particle diameter, scene units, > 0
+  bool surfaceOnly = false;  ///< sample the surface instead of the volume (thin shells, open meshes)
+  std::uint64_t maxParticles = 20'000'000;  ///< refuse (InputError) before allocating more voxels than this
+};
+
+/// The particles of a fill and what the fill noticed about the mesh.
+struct MeshFillResult {
+  std::vector<Vec3> points;        ///< lattice points inside (or on the surface), x fastest, then y, then z
+  std::uint64_t votedVoxels = 0;   ///< voxels where the three ray directions did not all agree (volume fill)
+  std::uint64_t testedVoxels = 0;  ///< voxels of the grid
+  std::vector<std::string> warnings;  ///< one sentence each, e.g. the axes disagree: the mesh is not closed
+};
+
+/// Voxels of the fill grid (an upper bound of the points a fill can make), from the bounding
+/// box, without allocating. Saturates at UINT64_MAX; 0 for a mesh without vertices; UINT64_MAX
+/// for a spacing that is not a finite positive number.
+std::uint64_t meshFillBound(const TriangleMesh& mesh, double spacing);
+
+/// Fills `mesh` with lattice points of step options.spacing over its bounding box: voxel k
+/// of an axis has its centre at lo + (k + 0.5)·spacing. Volume fill: a centre is inside when
+/// at least two of the rays cast along +x, +y and +z through it have crossed the surface an
+/// odd number of times before reaching it (meshes from the wild are not closed; the result
+/// warns when the directions disagree on more than 1% of the voxels). Surface fill: centres
+/// within spacing/2 of a triangle. Zero-area triangles are skipped; the triangles' orientation
+/// does not matter. Throws InputError for an empty mesh, an index out of range, a non-finite
+/// vertex, a spacing that is not > 0, or a grid of more than options.maxParticles voxels.
+MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options);
+
+}  // namespace softsub::geometry

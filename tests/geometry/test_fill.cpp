@@ -1,0 +1,248 @@
+// Mesh → particles: the volume a fill covers, where its points lie, and what it does with
+// meshes that are open, duplicated, inverted, degenerate or too large.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "geometry/fill.h"
+#include "support/meshes.h"
+
+namespace softsub::geometry {
+namespace {
+
+using scenarios::boxMesh;
+using scenarios::signedVolume;
+using scenarios::sphereMesh;
+using scenarios::torusMesh;
+
+MeshFillResult fill(const TriangleMesh& m, double spacing, bool surfaceOnly = false) {
+  MeshFillOptions o;
+  o.spacing = spacing;
+  o.surfaceOnly = surfaceOnly;
+  return fillMesh(m, o);
+}
+
+double filledVolume(const MeshFillResult& r, double spacing) {
+  return static_cast<double>(r.points.size()) * spacing * spacing * spacing;
+}
+
+TriangleMesh merged(TriangleMesh a, const TriangleMesh& b) {
+  const auto offset = static_cast<std::uint32_t>(a.vertices.size());
+  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return a;
+}
+
+TEST(FillMesh, BoxOnTheLatticeIsFilledExactly) {
+  const auto r = fill(boxMesh(Vec3(0, 0, 0), Vec3(20, 20, 20)), 1.0);
+  EXPECT_EQ(r.points.size(), 8000u);
+  EXPECT_EQ(r.votedVoxels, 0u);
+  EXPECT_EQ(r.testedVoxels, 8000u);
+  EXPECT_TRUE(r.warnings.empty());
+  // Deterministic order: x fastest, then y, then z; points are voxel centres.
+  EXPECT_EQ(r.points.front(), Vec3(0.5, 0.5, 0.5));
+  EXPECT_EQ(r.points[1], Vec3(1.5, 0.5, 0.5));
+  EXPECT_EQ(r.points[20], Vec3(0.5, 1.5, 0.5));
+  EXPECT_EQ(r.points.back(), Vec3(19.5, 19.5, 19.5));
+}
+
+TEST(FillMesh, BoxOffTheLatticeHasItsVolumeWithinThreePercent) {
+  const Vec3 lo(0.37, -3.3, 1.9), hi(60.1, 41.75, 50.2);
+  const double spacing = 1.0;
+  const auto mesh = boxMesh(lo, hi);
+  const auto r = fill(mesh, spacing);
+  const double volume = signedVolume(mesh);
+  EXPECT_NEAR(filledVolume(r, spacing) / volume, 1.0, 0.03);
+  EXPECT_EQ(r.votedVoxels, 0u);
+  for (const Vec3& p : r.points) {
+    EXPECT_TRUE((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) << p.transpose();
+  }
+}
+
+TEST(FillMesh, SphereHasItsVolumeWithinThreePercentAndNoPointOutside) {
+  const Vec3 c(1.3, -2.1, 0.7);
+  const double spacing = 0.5, radius = 10 * spacing;
+  const auto mesh = sphereMesh(c, radius, 64, 128);
+  const auto r = fill(mesh, spacing);
+  EXPECT_NEAR(filledVolume(r, spacing) / signedVolume(mesh), 1.0, 0.03);
+  EXPECT_LT(r.votedVoxels, r.points.size() / 100);
+  EXPECT_TRUE(r.warnings.empty());
+  for (const Vec3& p : r.points) EXPECT_LE((p - c).norm(), radius + spacing);
+}
+
+TEST(FillMesh, TorusHasItsVolumeWithinThreePercentAndNoPointOutside) {
+  const Vec3 c(-4.0, 2.5, 3.25);
+  const double spacing = 0.25, major = 3.0, minor = 1.25;
+  const auto mesh = torusMesh(c, major, minor, 96, 48);
+  const auto r = fill(mesh, spacing);
+  EXPECT_NEAR(filledVolume(r, spacing) / signedVolume(mesh), 1.0, 0.03);
+  EXPECT_LT(r.votedVoxels, r.points.size() / 100);
+  for (const Vec3& p : r.points) {
+    const Vec3 q = p - c;
+    const double ring = std::hypot(q.x(), q.z()) - major;  // the torus is around the y axis
+    EXPECT_LE(std::hypot(ring, q.y()), minor + spacing);
+  }
+}
+
+// A cavity whose faces run exactly through voxel centres: every axis decides the tie the same way.
+TEST(FillMesh, NestedBoxIsACavityAndFacesThroughCentresAgreeOnEveryAxis) {
+  const auto mesh =
+      merged(boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10)), boxMesh(Vec3(2.5, 2.5, 2.5), Vec3(7.5, 7.5, 7.5)));
+  const auto r = fill(mesh, 1.0);
+  EXPECT_EQ(r.points.size(), 1000u - 125u);
+  EXPECT_EQ(r.votedVoxels, 0u);
+  for (const Vec3& p : r.points) EXPECT_FALSE((p.array() > 2.5).all() && (p.array() < 7.5).all());
+}
+
+TEST(FillMesh, DuplicatedInvertedOrReorderedTrianglesFillTheSame) {
+  const auto box = boxMesh(Vec3(-0.3, 0.2, 0.45), Vec3(6.8, 5.1, 4.4));
+  const auto reference = fill(box, 0.25);
+  ASSERT_FALSE(reference.points.empty());
+
+  auto doubled = box;
+  doubled.triangles.insert(doubled.triangles.end(), box.triangles.begin(), box.triangles.end());
+  auto inverted = box;
+  for (auto& t : inverted.triangles) std::swap(t[1], t[2]);
+  auto rotated = box;  // same triangles, vertex order rotated: other rounding, same surface
+  for (auto& t : rotated.triangles) t = {t[1], t[2], t[0]};
+  auto soup = box;  // no shared vertices, as STL files come
+  soup.vertices.clear();
+  soup.triangles.clear();
+  for (const auto& t : box.triangles) {
+    const auto base = static_cast<std::uint32_t>(soup.vertices.size());
+    for (std::uint32_t i : t) soup.vertices.push_back(box.vertices[i]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  for (const auto* m : {&doubled, &inverted, &rotated, &soup}) {
+    const auto r = fill(*m, 0.25);
+    EXPECT_EQ(r.points, reference.points);
+    EXPECT_EQ(r.votedVoxels, 0u);
+  }
+
+  const auto sphere = sphereMesh(Vec3(0, 0, 0), 3.0, 24, 48);
+  auto sphereDoubled = sphere;
+  sphereDoubled.triangles.insert(sphereDoubled.triangles.end(), sphere.triangles.begin(),
+                                 sphere.triangles.end());
+  EXPECT_EQ(fill(sphereDoubled, 0.2).points, fill(sphere, 0.2).points);
+}
+
+TEST(FillMesh, OpenBoxGivesASaneResultAndAWarning) {
+  const Vec3 lo(0.1, 0.2, 0.3), hi(8.1, 6.2, 5.3);
+  const auto closed = boxMesh(lo, hi);
+  const auto full = fill(closed, 0.5);
+  // boxMesh's first quad (two triangles) is the x = lo face.
+  auto open = closed;
+  open.triangles.erase(open.triangles.begin(), open.triangles.begin() + 2);
+  const auto r = fill(open, 0.5);
+  EXPECT_LE(r.points.size(), full.points.size());
+  EXPECT_GT(r.points.size(), full.points.size() / 2);
+  EXPECT_GT(r.votedVoxels, 0u);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.front().find("disagree"), std::string::npos) << r.warnings.front();
+
+  // The x = hi face missing instead: the +x rays see no exit; still nothing outside the box.
+  auto openHi = closed;
+  openHi.triangles.erase(openHi.triangles.begin() + 2, openHi.triangles.begin() + 4);
+  const auto rHi = fill(openHi, 0.5);
+  EXPECT_LE(rHi.points.size(), full.points.size());
+  for (const Vec3& p : rHi.points)
+    EXPECT_TRUE((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all());
+}
+
+TEST(FillMesh, SphereWithAHoleStaysInsideTheSphere) {
+  const Vec3 c(0, 0, 0);
+  auto mesh = sphereMesh(c, 5.0, 32, 64);
+  mesh.triangles.erase(mesh.triangles.begin(), mesh.triangles.begin() + 64 + 128);  // the north cap
+  const auto r = fill(mesh, 0.25);
+  const auto closed = fill(sphereMesh(c, 5.0, 32, 64), 0.25);
+  EXPECT_LE(r.points.size(), closed.points.size());
+  EXPECT_GT(r.points.size(), closed.points.size() * 9 / 10);
+  for (const Vec3& p : r.points) EXPECT_LE(p.norm(), 5.0 + 0.25);
+}
+
+TEST(FillMesh, SurfaceOnlySphereLiesOnTheSurfaceWithAboutAreaOverSpacingSquaredPoints) {
+  const Vec3 c(0.3, 0.1, -0.2);
+  const double spacing = 0.5, radius = 10 * spacing;
+  const auto r = fill(sphereMesh(c, radius, 64, 128), spacing, true);
+  const double expected = 4 * std::numbers::pi * radius * radius / (spacing * spacing);
+  EXPECT_NEAR(static_cast<double>(r.points.size()) / expected, 1.0, 0.1);
+  EXPECT_EQ(r.votedVoxels, 0u);
+  for (const Vec3& p : r.points) EXPECT_LE(std::abs((p - c).norm() - radius), spacing);
+}
+
+TEST(FillMesh, SurfaceOnlyBoxOnTheLatticeHasNoHoles) {
+  // Faces on voxel boundaries put the centres exactly spacing/2 away: both sides count.
+  const auto r = fill(boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10)), 1.0, true);
+  EXPECT_EQ(r.points.size(), 1000u - 512u);
+}
+
+TEST(FillMesh, IsDeterministic) {
+  const auto mesh = torusMesh(Vec3(0.1, 0.2, 0.3), 3.0, 1.0, 48, 24);
+  EXPECT_EQ(fill(mesh, 0.2).points, fill(mesh, 0.2).points);
+  EXPECT_EQ(fill(mesh, 0.2, true).points, fill(mesh, 0.2, true).points);
+}
+
+TEST(FillMesh, RefusesTooManyParticlesBeforeAllocating) {
+  const auto huge = boxMesh(Vec3(-1e6, -1e6, -1e6), Vec3(1e6, 1e6, 1e6));
+  EXPECT_EQ(meshFillBound(huge, 1e-3), std::numeric_limits<std::uint64_t>::max());
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(fill(huge, 1e-3), InputError);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+
+  const auto box = boxMesh(Vec3(0, 0, 0), Vec3(10, 10, 10));
+  EXPECT_EQ(meshFillBound(box, 1.0), 1000u);
+  MeshFillOptions o;
+  o.maxParticles = 999;
+  try {
+    fillMesh(box, o);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.allowed().find("999"), std::string::npos) << e.what();
+  }
+  o.maxParticles = 1000;
+  EXPECT_EQ(fillMesh(box, o).points.size(), 1000u);
+}
+
+TEST(FillMesh, RefusesBadSpacingAndEmptyOrBrokenMeshes) {
+  const auto box = boxMesh(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  EXPECT_THROW(fill(box, 0.0), InputError);
+  EXPECT_THROW(fill(box, -1.0), InputError);
+  EXPECT_THROW(fill(box, std::nan("")), InputError);
+  EXPECT_THROW(fill(box, std::numeric_limits<double>::infinity()), InputError);
+  EXPECT_THROW(fill(TriangleMesh{}, 1.0), InputError);
+  EXPECT_EQ(meshFillBound(TriangleMesh{}, 1.0), 0u);
+  auto badIndex = box;
+  badIndex.triangles.push_back({0, 1, 8});
+  EXPECT_THROW(fill(badIndex, 0.5), InputError);
+  auto notFinite = box;
+  notFinite.vertices[3].x() = std::nan("");
+  EXPECT_THROW(fill(notFinite, 0.5), InputError);
+}
+
+TEST(FillMesh, DegenerateTrianglesAreSkippedWithoutCrashing) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 0, 1)};
+  m.triangles = {{0, 1, 2}, {0, 0, 3}, {3, 3, 3}, {2, 1, 0}};
+  for (bool surface : {false, true}) {
+    const auto r = fill(m, 0.25, surface);
+    EXPECT_TRUE(r.points.empty());
+    EXPECT_FALSE(r.warnings.empty());
+  }
+  // A closed box with some zero-area triangles added fills as the box, with a note.
+  auto box = boxMesh(Vec3(0, 0, 0), Vec3(4, 4, 4));
+  const auto reference = fill(box, 0.5);
+  box.triangles.push_back({0, 0, 7});
+  box.vertices.push_back(Vec3(2, 2, 2));
+  box.vertices.push_back(Vec3(3, 3, 3));
+  box.triangles.push_back({0, 8, 9});  // collinear through the inside
+  const auto r = fill(box, 0.5);
+  EXPECT_EQ(r.points, reference.points);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings.front().find("zero area"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace softsub::geometry
