@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cmd_fill.h"
 #include "cmd_info.h"
 #include "cmd_run.h"
 #include "cmd_schema.h"
@@ -32,8 +33,10 @@ int runApp(int argc, char** argv) {
 
   app::RunOptions runOptions;
   app::InfoOptions infoOptions;
+  app::FillOptions fillOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
+  CLI::App* fill = app::addFillCommand(root, fillOptions);
   CLI::App* schema = app::addSchemaCommand(root);
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
@@ -60,6 +63,7 @@ int runApp(int argc, char** argv) {
 
   if (run->parsed()) return app::runCommand(runOptions);
   if (info->parsed()) return app::infoCommand(infoOptions);
+  if (fill->parsed()) return app::fillCommand(fillOptions);
   if (schema->parsed()) return app::schemaCommand();
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }

@@ -1,0 +1,108 @@
+#include "cmd_fill.h"
+
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cache/atomic_file.h"
+#include "cache/ply_format.h"
+#include "core/error.h"
+#include "core/snapshot.h"
+#include "geometry/fill.h"
+#include "geometry/mesh_loader.h"
+#include "progress.h"
+#include "text_format.h"
+
+namespace softsub::app {
+
+CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
+  CLI::App* cmd = root.add_subcommand(
+      "fill", "Fill a mesh with particles (the seed's 'convert to particles'): a PLY point cloud or a <Fluid> block");
+  cmd->add_option("MESH", o.mesh, "Mesh file (OBJ, PLY, STL, glTF, FBX)")->required();
+  cmd->add_option("--spacing", o.spacing, "Lattice step = particle diameter, scene units (> 0)")->required();
+  auto* out = cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this file");
+  cmd->add_flag("--scene-snippet", o.sceneSnippet,
+                "Print a <Fluid> block with the particles to paste into a .scene (the default without --out)")
+      ->excludes(out);
+  cmd->add_flag("--surface", o.surface, "Sample the surface only (thin shells, open meshes)");
+  cmd->add_option("--name", o.name, "Name of the fluid in the snippet or the PLY (default: filled)");
+  cmd->add_option("--max-particles", o.maxParticles, "Refuse fills larger than this (default: 20,000,000)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on stderr but errors");
+  return cmd;
+}
+
+namespace {
+
+std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
+  // The fluid's own scales follow the spacing: particles touch at rest.
+  std::string s = fmt::format(
+      "<!-- softsub fill {} --spacing {}{}: {} particles -->\n"
+      "<Fluid>\n"
+      "  <Name>{}</Name>\n"
+      "  <ParticleSize>{}</ParticleSize>\n"
+      "  <FiniteDistance>{}</FiniteDistance>\n"
+      "  <InteractionDistance>{}</InteractionDistance>\n"
+      "  <NumberOfParticles>{}</NumberOfParticles>\n"
+      "  <Particles>\n",
+      o.mesh, o.spacing, o.surface ? " --surface" : "", r.points.size(), o.name, o.spacing, o.spacing,
+      1.5 * o.spacing, r.points.size());
+  for (const Vec3& p : r.points) s += fmt::format("    {} {} {}\n", p.x(), p.y(), p.z());
+  s += "  </Particles>\n</Fluid>\n";
+  return s;
+}
+
+}  // namespace
+
+int fillCommand(const FillOptions& o) {
+  if (!(o.spacing > 0))
+    throw InputError({"command line", 0, "--spacing"}, fmt::format("{} is not a valid spacing", o.spacing),
+                     "a number > 0");
+  geometry::MeshLoadReport report;
+  const geometry::TriangleMesh mesh = geometry::loadMesh(o.mesh, &report);
+  geometry::MeshFillOptions fo;
+  fo.spacing = o.spacing;
+  fo.surfaceOnly = o.surface;
+  fo.maxParticles = o.maxParticles;
+  const geometry::MeshFillResult r = [&] {
+    try {
+      return geometry::fillMesh(mesh, fo);
+    } catch (const InputError& e) {  // the fill knows the mesh, not its file: name it
+      if (!e.where().file.empty()) throw;
+      throw InputError({o.mesh, e.where().line, e.where().element}, e.problem(), e.allowed());
+    }
+  }();
+  const bool talk = !o.quiet && stderrIsTerminal();
+  for (const std::string& w : report.warnings) fmt::print(stderr, "warning: {}: {}\n", o.mesh, w);
+  for (const std::string& w : r.warnings) fmt::print(stderr, "warning: {}: {}\n", o.mesh, w);
+  if (r.points.empty())
+    throw InputError({o.mesh, 0, "mesh"}, "the fill produced no particles",
+                     "a closed mesh larger than the spacing (or --surface for thin shells)");
+
+  if (!o.out.empty()) {
+    FrameSnapshot frame;
+    FluidSnapshot f;
+    f.name = o.name;
+    f.particleSize = static_cast<float>(o.spacing);
+    for (std::size_t k = 0; k < r.points.size(); ++k) {
+      f.ids.push_back(static_cast<std::uint32_t>(k));
+      const Vec3& p = r.points[k];
+      f.positions.insert(f.positions.end(),
+                         {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+    }
+    f.velocities.assign(f.positions.size(), 0.0f);
+    frame.fluids.push_back(std::move(f));
+    cache::writeFileAtomic(o.out, cache::encodePly(frame));
+  } else {
+    const std::string text = snippet(o, r);
+    std::fwrite(text.data(), 1, text.size(), stdout);
+  }
+  if (talk)
+    fmt::print(stderr, "filled {} from {} (spacing {}{}){}\n", countOf(r.points.size(), "particle"), o.mesh,
+               o.spacing, o.surface ? ", surface" : "", o.out.empty() ? "" : fmt::format(" -> {}", o.out));
+  return static_cast<int>(ExitCode::Ok);
+}
+
+}  // namespace softsub::app
