@@ -1,7 +1,10 @@
 #include "scene/compile.h"
 
+#include <filesystem>
 #include <limits>
 
+#include "geometry/fill.h"
+#include "geometry/mesh_loader.h"
 #include "scene/fill.h"
 #include "scene/reader.h"
 
@@ -73,7 +76,21 @@ Compiled compile(const SceneDesc& desc) {
   for (std::size_t f = 0; f < nf; ++f) {
     const FluidDesc& fd = desc.fluids[f];
     points.assign(fd.particles.begin(), fd.particles.end());
-    for (const FillDesc& fill : fd.fills) generateFill(fill, points);
+    for (const FillDesc& fill : fd.fills) {
+      if (fill.shape != FillShape::Mesh) {
+        generateFill(fill, points);
+        continue;
+      }
+      // The reader checked the path, the mesh and its bound against the particle cap;
+      // the loader's and the fill's warnings (repairs, open meshes) are not shown here.
+      const geometry::TriangleMesh mesh =
+          geometry::loadMesh(std::filesystem::path(desc.baseDir) / fill.geometry);
+      const geometry::MeshFillResult r = geometry::fillMesh(
+          mesh, {.spacing = fill.spacing,
+                 .surfaceOnly = fill.surface,
+                 .maxParticles = geometry::meshFillBound(mesh, fill.spacing)});
+      points.insert(points.end(), r.points.begin(), r.points.end());
+    }
     solver::FluidInfo info;
     info.name = fd.name;
     info.colour = {static_cast<float>(fd.colour.x()), static_cast<float>(fd.colour.y()),

@@ -13,7 +13,8 @@ struct Compiled {
 
 /// Builds the model (materials, interaction table, container, options) and the initial
 /// state (every fluid's explicit particles then its fills, in scene order; stable ids in
-/// that order) from a validated description.
+/// that order) from a validated description. Mesh fills load their mesh from
+/// desc.baseDir / Geometry again (IoError or InputError if it changed since reading).
 Compiled compile(const SceneDesc& desc);
 
 /// The solver's integrator for a scene's.

@@ -15,6 +15,8 @@
 #include <utility>
 
 #include "core/error.h"
+#include "geometry/fill.h"
+#include "geometry/mesh_loader.h"
 #include "scene/fill.h"
 #include "scene/schema.h"
 #include "scene/value_text.h"
@@ -25,8 +27,7 @@ namespace {
 
 constexpr std::string_view kRigidRefused =
     "rigid objects are not supported yet (they arrive with rigid bodies, issue #3)";
-constexpr std::string_view kMeshRefused =
-    "mesh fills need mesh loading, which arrives with issue #3";
+constexpr std::string_view kPathAllowed = "a path inside the scene's folder, e.g. honeyGeo/blob.obj";
 constexpr std::string_view kOneFunction =
     "exactly one of Linear, LennardJones, LennardJonesForce, Curve";
 
@@ -54,8 +55,9 @@ std::uint64_t saturatingAdd(std::uint64_t a, std::uint64_t b) {
 // The text being read: file name, line table, options; raises InputErrors.
 class Context {
  public:
-  Context(std::string_view text, std::string file, const ReadOptions& readOptions)
-      : options(readOptions), file_(std::move(file)) {
+  Context(std::string_view text, std::string file, std::filesystem::path base,
+          const ReadOptions& readOptions)
+      : options(readOptions), baseDir(std::move(base)), file_(std::move(file)) {
     lineStarts_.push_back(0);
     for (std::size_t i = 0; i < text.size(); ++i) {
       if (text[i] == '\n') lineStarts_.push_back(i + 1);
@@ -82,6 +84,7 @@ class Context {
   }
 
   const ReadOptions& options;
+  std::filesystem::path baseDir;  ///< absolute folder relative paths resolve against
 
  private:
   std::string file_;
@@ -307,6 +310,7 @@ class SceneReader {
     c.run();
     checkPairs();
     checkParticleCap();
+    scene_.baseDir = cx_.baseDir.string();
     return std::move(scene_);
   }
 
@@ -380,6 +384,7 @@ class SceneReader {
                fmt::format("the scene has {} fluids, more than the cap of {}", fluidElements_, kMaxFluids),
                fmt::format("at most {} fluids", kMaxFluids));
     }
+    meshBound_ = 0;
     Children c(cx_, node, label);
     c.fields(fieldsOf<FluidDesc>(), fluid);
     c.element("Fill", [&](pugi::xml_node n, const std::string&) {
@@ -413,6 +418,7 @@ class SceneReader {
                "explicit <Particles> or at least one <Fill>");
     }
     labels_.push_back(label);
+    meshBounds_.push_back(meshBound_);
     scene_.fluids.push_back(std::move(fluid));
   }
 
@@ -426,9 +432,6 @@ class SceneReader {
     }
     const auto shape = static_cast<FillShape>(
         std::get<std::int64_t>(parseValue(cx_, shapeNode, path + "/Shape", shapeInfo)));
-    if (shape == FillShape::Mesh) {
-      cx_.fail(cx_.lineOf(shapeNode), path + "/Shape", std::string(kMeshRefused), "box, sphere");
-    }
     Children c(cx_, node, path);
     c.fields(fieldsOf<FillDesc>(), fill);
     c.fields(fillShapeFields(shape), fill);
@@ -451,11 +454,64 @@ class SceneReader {
                  "Min < Max on every axis");
       }
     }
+    if (shape == FillShape::Mesh) {
+      checkMeshFill(c, fill, path);
+      return fill;
+    }
     if (fillCount(fill) == 0) {
       cx_.fail(fill.line, path, "the fill makes no particles",
                "a fill with at least one lattice point: a box at least Spacing wide on every axis");
     }
     return fill;
+  }
+
+  // A mesh fill: Spacing given, Geometry a relative path that stays inside the scene's
+  // folder once symbolic links are resolved, and a mesh that loads. Its voxel bound
+  // counts toward the particle cap (nothing is generated here).
+  void checkMeshFill(const Children& c, const FillDesc& fill, const std::string& path) {
+    namespace fs = std::filesystem;
+    if (c.lineOf("Spacing") == 0) {
+      cx_.fail(fill.line, path, "missing required <Spacing>",
+               "a mesh fill gives its lattice step: <Spacing>, > 0");
+    }
+    const int line = c.lineOf("Geometry");
+    const std::string element = path + "/Geometry";
+    const auto fail = [&](const std::string& problem) {
+      cx_.fail(line, element, problem, std::string(kPathAllowed));
+    };
+    const fs::path given(fill.geometry);
+    if (fill.geometry.empty()) fail("the mesh path is empty");
+    if (given.is_absolute() || given.has_root_name() || given.has_root_directory()) {
+      fail(fmt::format("{} is an absolute path", quote(fill.geometry)));
+    }
+    const fs::path normal = given.lexically_normal();
+    if (!normal.empty() && *normal.begin() == "..") {
+      fail(fmt::format("{} leaves the scene's folder", quote(fill.geometry)));
+    }
+    if (normal.empty() || normal == ".") {
+      fail(fmt::format("{} names the scene's folder itself, not a mesh file", quote(fill.geometry)));
+    }
+    std::error_code ec;
+    const fs::path base = fs::weakly_canonical(cx_.baseDir, ec);
+    fs::path target;
+    if (!ec) target = fs::weakly_canonical(base / normal, ec);
+    if (ec) fail(fmt::format("cannot resolve {}: {}", quote(fill.geometry), ec.message()));
+    const fs::path rel = target.lexically_relative(base);
+    if (rel.empty() || *rel.begin() == ".." || rel == ".") {
+      fail(fmt::format("{} resolves to '{}', outside the scene's folder (through a symbolic link)",
+                       quote(fill.geometry), target.string()));
+    }
+    geometry::TriangleMesh mesh;
+    try {
+      mesh = geometry::loadMesh(target);
+    } catch (const InputError& e) {
+      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(fill.geometry), e.problem()),
+               "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
+    } catch (const IoError& e) {
+      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(fill.geometry), e.what()),
+               "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
+    }
+    meshBound_ = saturatingAdd(meshBound_, geometry::meshFillBound(mesh, fill.spacing));
   }
 
   void readInteractions(pugi::xml_node node, const std::string& path) {
@@ -578,6 +634,7 @@ class SceneReader {
       const FluidDesc& f = scene_.fluids[i];
       total = saturatingAdd(total, f.particles.size());
       for (const FillDesc& fill : f.fills) total = saturatingAdd(total, fillCount(fill));
+      total = saturatingAdd(total, meshBounds_[i]);  // mesh fills: their voxel grids
       if (total > cap && crossing == scene_.fluids.size()) crossing = i;
     }
     if (crossing == scene_.fluids.size()) return;
@@ -596,6 +653,8 @@ class SceneReader {
   std::vector<std::string> labels_;       // per fluid: its element path
   std::vector<PairSource> pairSources_;   // per pair: lines of A and B, its path
   std::size_t fluidElements_ = 0;         // <Fluid> elements of the file, for the cap's message
+  std::vector<std::uint64_t> meshBounds_; // per fluid: voxel bound of its mesh fills
+  std::uint64_t meshBound_ = 0;           // the fluid being read: its mesh fills' bound
 };
 
 }  // namespace
@@ -603,7 +662,12 @@ class SceneReader {
 SceneDesc readSceneText(std::string_view text, const std::string& fileName,
                         const ReadOptions& options) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
-  const Context cx(text, fileName, options);
+  std::error_code ec;
+  std::filesystem::path base = std::filesystem::path(fileName).parent_path();
+  if (base.empty()) base = ".";
+  base = std::filesystem::absolute(base, ec).lexically_normal();
+  if (ec) base = std::filesystem::path(fileName).parent_path();
+  const Context cx(text, fileName, base, options);
   pugi::xml_document doc;
   // parse_fragment keeps text outside the root as nodes (pugixml drops it otherwise);
   // SceneReader then insists on exactly one root element and no text around it.

@@ -55,12 +55,14 @@ struct FillDesc {
   Vec3 max{1, 1, 1};     ///< box: upper corner
   Vec3 center{0, 0, 0};  ///< sphere: centre
   double radius = 1;     ///< sphere: radius
-  std::string geometry;  ///< mesh: file relative to the scene (issue #3)
+  std::string geometry;  ///< mesh: file as written, relative to SceneDesc::baseDir
+  bool surface = false;  ///< mesh: sample the surface only (thin shells, open meshes)
   double spacing = 1;    ///< lattice step, > 0
   int line = 0;          ///< source line (for messages); not compared
   bool operator==(const FillDesc& o) const {
     return shape == o.shape && min == o.min && max == o.max && center == o.center &&
-           radius == o.radius && geometry == o.geometry && spacing == o.spacing;
+           radius == o.radius && geometry == o.geometry && surface == o.surface &&
+           spacing == o.spacing;
   }
 };
 
@@ -112,7 +114,13 @@ struct SceneDesc {
   std::optional<EnvironmentDesc> environment;  ///< absent: no walls at all
   std::vector<FluidDesc> fluids;
   InteractionsDesc interactions;
-  bool operator==(const SceneDesc&) const = default;
+  /// The folder relative paths (mesh fills' Geometry) resolve against: the scene file's
+  /// folder, absolute. Where the scene came from, not what it says: not compared.
+  std::string baseDir;
+  bool operator==(const SceneDesc& o) const {
+    return simulation == o.simulation && camera == o.camera && environment == o.environment &&
+           fluids == o.fluids && interactions == o.interactions;
+  }
 };
 
 }  // namespace softsub::scene

@@ -151,7 +151,7 @@ constexpr Field<FluidDesc> kFluid[] = {
 constexpr Field<FillDesc> kFillCommon[] = {
     field<&FillDesc::shape>({.tag = "Shape", .kind = Kind::Enum, .unit = "-",
                              .meaning = "what the lattice fills",
-                             .rule = "mesh is refused until mesh loading (issue #3)",
+                             .rule = "mesh needs Geometry and Spacing",
                              .choices = kFillShapeNames, .required = true}),
     field<&FillDesc::spacing>({.tag = "Spacing", .kind = Kind::Real, .unit = "units",
                                .range = kPositive,
@@ -176,8 +176,14 @@ constexpr Field<FillDesc> kFillSphere[] = {
 
 constexpr Field<FillDesc> kFillMesh[] = {
     field<&FillDesc::geometry>({.tag = "Geometry", .kind = Kind::String, .unit = "-",
-                                .meaning = "closed mesh file, relative to the scene's folder",
-                                .rule = "inside the scene's folder tree", .required = true}),
+                                .meaning = "closed mesh file (OBJ, PLY, STL, glTF, FBX...), "
+                                           "relative to the scene's folder",
+                                .rule = "a relative path that stays inside the scene's folder "
+                                        "tree (symbolic links resolved)",
+                                .required = true}),
+    field<&FillDesc::surface>({.tag = "Surface", .kind = Kind::Bool, .unit = "-",
+                               .meaning = "extension: particles on the surface only (thin "
+                                          "shells, open meshes) instead of the volume"}),
 };
 
 constexpr Field<Linear> kLinear[] = {
@@ -423,7 +429,7 @@ std::string schemaMarkdown() {
   appendTable<FillDesc>(out, "`<Fill>`, every shape", kFillCommon);
   appendTable<FillDesc>(out, "`<Fill>` with Shape `box`", kFillBox);
   appendTable<FillDesc>(out, "`<Fill>` with Shape `sphere`", kFillSphere);
-  appendTable<FillDesc>(out, "`<Fill>` with Shape `mesh` (refused until issue #3)", kFillMesh);
+  appendTable<FillDesc>(out, "`<Fill>` with Shape `mesh`", kFillMesh);
   appendTable<Linear>(out, "`<Linear>`", kLinear);
   appendTable<LennardJones>(out, "`<LennardJones>`", kLennardJones);
   appendTable<LennardJonesForce>(out, "`<LennardJonesForce>`", kLennardJonesForce);

@@ -1,0 +1,200 @@
+// Mesh fills with real files: a scene folder with meshes, read with readSceneFile (the
+// path rules against the scene's folder, the mesh checked at the boundary) and compiled.
+// The rules that need no file are rows of reader_error_rows.h.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "scene/compile.h"
+#include "scene/reader.h"
+#include "scene/writer.h"
+
+namespace softsub::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder under the system's temporary folder, removed with its contents.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string pattern = (fs::temp_directory_path() / "softsub-meshfill-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void writeText(const fs::path& file, const std::string& text) {
+  fs::create_directories(file.parent_path());
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+// A closed box [0,a]^3 as an OBJ with quads, counter-clockwise from outside.
+std::string boxObj(double a) {
+  std::string s;
+  for (int k = 0; k < 8; ++k) {
+    s += "v " + std::to_string(k & 1 ? a : 0) + ' ' + std::to_string(k & 2 ? a : 0) + ' ' +
+         std::to_string(k & 4 ? a : 0) + '\n';
+  }
+  return s + "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";
+}
+
+// A scene with one fluid 'goo' filling the mesh at geometry.
+std::string meshScene(const std::string& geometry, double spacing, const std::string& extra = "") {
+  return "<Scene version=\"1\">\n<Fluid>\n<Name>goo</Name>\n<Fill>\n<Shape>mesh</Shape>\n"
+         "<Geometry>" + geometry + "</Geometry>\n<Spacing>" + std::to_string(spacing) +
+         "</Spacing>\n" + extra + "</Fill>\n</Fluid>\n</Scene>\n";
+}
+
+// The InputError reading dir/t.scene gives; fails the test when it reads.
+InputError readFileError(const fs::path& scene, const ReadOptions& options = {}) {
+  try {
+    (void)readSceneFile(scene.string(), options);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted " << scene;
+  return InputError({}, "");
+}
+
+TEST(MeshFill, CubeFillsItsVolumeWithin3Percent) {
+  TempFolder tmp;
+  writeText(tmp.path() / "cubeGeo/cube.obj", boxObj(2.0));
+  const fs::path scene = tmp.path() / "cube.scene";
+  writeText(scene, meshScene("cubeGeo/cube.obj", 0.25));
+  const SceneDesc d = readSceneFile(scene.string());
+  EXPECT_EQ(fs::path(d.baseDir), fs::weakly_canonical(tmp.path()));
+  ASSERT_EQ(d.fluids.size(), 1u);
+  ASSERT_EQ(d.fluids[0].fills.size(), 1u);
+  EXPECT_EQ(d.fluids[0].fills[0].shape, FillShape::Mesh);
+  EXPECT_EQ(d.fluids[0].fills[0].geometry, "cubeGeo/cube.obj");
+  EXPECT_FALSE(d.fluids[0].fills[0].surface);
+
+  const Compiled c = compile(d);
+  const double volume = static_cast<double>(c.state.particles.size()) * 0.25 * 0.25 * 0.25;
+  EXPECT_NEAR(volume, 8.0, 0.03 * 8.0);
+  ASSERT_EQ(c.model.fluids.size(), 1u);
+  EXPECT_EQ(c.model.fluids[0].count, c.state.particles.size());
+}
+
+TEST(MeshFill, SurfaceSamplesOnlyNearTheSurface) {
+  TempFolder tmp;
+  writeText(tmp.path() / "cube.obj", boxObj(4.0));
+  writeText(tmp.path() / "solid.scene", meshScene("cube.obj", 0.5));
+  writeText(tmp.path() / "shell.scene", meshScene("cube.obj", 0.5, "<Surface>true</Surface>\n"));
+  const SceneDesc solid = readSceneFile((tmp.path() / "solid.scene").string());
+  const SceneDesc shell = readSceneFile((tmp.path() / "shell.scene").string());
+  EXPECT_TRUE(shell.fluids[0].fills[0].surface);
+  const std::size_t nSolid = compile(solid).state.particles.size();
+  const std::size_t nShell = compile(shell).state.particles.size();
+  EXPECT_GT(nShell, 0u);
+  EXPECT_LT(nShell, nSolid);  // an 8^3 lattice: 512 inside, the outer layer 296
+}
+
+TEST(MeshFill, RoundTripsThroughTheWriterKeepingThePathAsWritten) {
+  TempFolder tmp;
+  writeText(tmp.path() / "geo/cube.obj", boxObj(1.0));
+  writeText(tmp.path() / "a.scene", meshScene("geo/./cube.obj", 0.25, "<Surface>1</Surface>\n"));
+  const SceneDesc d = readSceneFile((tmp.path() / "a.scene").string());
+  const std::string text = writeSceneText(d);
+  EXPECT_NE(text.find("<Geometry>geo/./cube.obj</Geometry>"), std::string::npos) << text;
+  EXPECT_NE(text.find("<Surface>true</Surface>"), std::string::npos) << text;
+  EXPECT_EQ(readSceneText(text, (tmp.path() / "again.scene").string()), d);
+}
+
+TEST(MeshFill, BoundCountsTowardTheParticleCap) {
+  TempFolder tmp;
+  writeText(tmp.path() / "cube.obj", boxObj(2.0));
+  writeText(tmp.path() / "t.scene", meshScene("cube.obj", 0.25));  // 8^3 = 512 voxels
+  EXPECT_NO_THROW((void)readSceneFile((tmp.path() / "t.scene").string(), {.maxParticles = 512}));
+  const InputError e = readFileError(tmp.path() / "t.scene", {.maxParticles = 511});
+  EXPECT_EQ(e.where().element, "Fluid 'goo'");
+  EXPECT_NE(e.problem().find("more than the cap of 511"), std::string::npos) << e.what();
+}
+
+TEST(MeshFill, GarbageMeshIsAnInputErrorAtTheGeometryLine) {
+  TempFolder tmp;
+  writeText(tmp.path() / "geo/junk.obj", "this is not a mesh\n");
+  writeText(tmp.path() / "t.scene", meshScene("geo/junk.obj", 0.5));
+  const InputError e = readFileError(tmp.path() / "t.scene");
+  EXPECT_EQ(e.where().line, 6);
+  EXPECT_EQ(e.where().element, "Fluid 'goo'/Fill[1]/Geometry");
+  EXPECT_NE(e.problem().find("cannot use the mesh 'geo/junk.obj'"), std::string::npos) << e.what();
+}
+
+TEST(MeshFill, MeshWithoutTrianglesIsAnInputError) {
+  TempFolder tmp;
+  writeText(tmp.path() / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  writeText(tmp.path() / "t.scene", meshScene("points.obj", 0.5));
+  const InputError e = readFileError(tmp.path() / "t.scene");
+  EXPECT_EQ(e.where().line, 6);
+  EXPECT_NE(e.problem().find("cannot use the mesh 'points.obj'"), std::string::npos) << e.what();
+}
+
+TEST(MeshFill, MissingMeshIsAnInputErrorNotAnIoError) {
+  TempFolder tmp;
+  writeText(tmp.path() / "t.scene", meshScene("geo/missing.obj", 0.5));
+  const InputError e = readFileError(tmp.path() / "t.scene");
+  EXPECT_EQ(e.where().line, 6);
+  EXPECT_NE(e.problem().find("'geo/missing.obj'"), std::string::npos) << e.what();
+}
+
+TEST(MeshFill, FolderInsteadOfAMeshIsAnInputError) {
+  TempFolder tmp;
+  fs::create_directories(tmp.path() / "geo/blob.obj");
+  writeText(tmp.path() / "t.scene", meshScene("geo/blob.obj", 0.5));
+  const InputError e = readFileError(tmp.path() / "t.scene");
+  EXPECT_EQ(e.where().element, "Fluid 'goo'/Fill[1]/Geometry");
+}
+
+TEST(MeshFill, SymlinkLeavingTheSceneFolderIsRefused) {
+  TempFolder tmp;
+  writeText(tmp.path() / "outside/cube.obj", boxObj(1.0));
+  writeText(tmp.path() / "scene/inside/cube.obj", boxObj(1.0));
+  std::error_code ec;
+  fs::create_directory_symlink(tmp.path() / "outside", tmp.path() / "scene/linkGeo", ec);
+  if (ec) GTEST_SKIP() << "cannot make a symbolic link: " << ec.message();
+  fs::create_symlink("inside/cube.obj", tmp.path() / "scene/cube.obj", ec);
+  ASSERT_FALSE(ec) << ec.message();
+
+  writeText(tmp.path() / "scene/t.scene", meshScene("linkGeo/cube.obj", 0.25));
+  const InputError e = readFileError(tmp.path() / "scene/t.scene");
+  EXPECT_EQ(e.where().line, 6);
+  EXPECT_EQ(e.where().element, "Fluid 'goo'/Fill[1]/Geometry");
+  EXPECT_NE(e.problem().find("outside the scene's folder"), std::string::npos) << e.what();
+  EXPECT_NE(e.allowed().find("a path inside the scene's folder"), std::string::npos);
+
+  // A link that stays inside the folder is fine.
+  writeText(tmp.path() / "scene/ok.scene", meshScene("cube.obj", 0.25));
+  EXPECT_NO_THROW((void)readSceneFile((tmp.path() / "scene/ok.scene").string()));
+}
+
+TEST(MeshFill, SceneInASubfolderResolvesAgainstItsOwnFolder) {
+  TempFolder tmp;
+  writeText(tmp.path() / "shots/a/geo/cube.obj", boxObj(1.0));
+  writeText(tmp.path() / "shots/a/t.scene", meshScene("geo/cube.obj", 0.25));
+  const SceneDesc d = readSceneFile((tmp.path() / "shots/a/t.scene").string());
+  EXPECT_EQ(compile(d).state.particles.size(), 64u);  // 4^3 lattice points inside the unit cube
+  // The sibling's folder is outside this scene's folder.
+  writeText(tmp.path() / "shots/b/t.scene", meshScene("../a/geo/cube.obj", 0.25));
+  EXPECT_NE(readFileError(tmp.path() / "shots/b/t.scene").problem().find("leaves the scene's folder"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace softsub::scene
