@@ -1,6 +1,7 @@
 // The examples do what their comments promise, over their full length: nothing blows
 // up or leaves the container, honey spreads and settles, the two fluids stay apart
-// with the light one on top, the jelly keeps its shape. Bounds are generous: they
+// with the light one on top, the jelly keeps its shape, the goo ring filled from a mesh
+// lands in one piece. Bounds are generous: they
 // catch a broken scene or solver, not a small change of numbers.
 #include <cmath>
 
@@ -138,6 +139,42 @@ TEST(ExamplePhysics, DemoWaterRunsWhileHoneyHoldsTogether) {
   const double honeyGrowth = end[0].extent(0) / start[0].extent(0);
   const double waterGrowth = end[1].extent(0) / start[1].extent(0);
   EXPECT_GT(waterGrowth - 1, 2 * (honeyGrowth - 1)) << honeyGrowth << " " << waterGrowth;
+}
+
+TEST(ExamplePhysics, GooTorusFilledFromAMeshLandsAndHoldsTogether) {
+  const FullRun run("goo-torus");
+  run.expectInsideContainer();
+  const Stats start = run.frame(0)[0];
+  const Stats end = run.frame(run.lastFrame())[0];
+  EXPECT_GT(start.positions.size() / 3, 300u);   // the mesh fill made the particles
+  EXPECT_LT(start.positions.size() / 3, 3000u);  // and few enough for CI
+  EXPECT_LT(end.lo[1], 1.0);                     // it landed
+  EXPECT_LT(end.mean[1], 0.5 * start.mean[1]);
+  // Held together: not splashed across the floor, and almost every particle still has a
+  // neighbour within the goo's InteractionDistance (2).
+  EXPECT_LT(end.extent(0), 1.6 * start.extent(0));
+  EXPECT_LT(end.extent(2), 1.6 * start.extent(2));
+  const std::size_t n = end.positions.size() / 3;
+  std::size_t loners = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    bool near = false;
+    for (std::size_t j = 0; j < n && !near; ++j) {
+      if (j == i) continue;
+      const double d = std::hypot(end.positions[3 * i] - end.positions[3 * j],
+                                  end.positions[3 * i + 1] - end.positions[3 * j + 1],
+                                  end.positions[3 * i + 2] - end.positions[3 * j + 2]);
+      near = d < 2.0;
+    }
+    loners += near ? 0 : 1;
+  }
+  EXPECT_LT(loners, n / 50) << loners << " of " << n;
+  EXPECT_LT(run.lastFrameMotion(0), 0.1);
+  // Still a ring: hardly any goo in the hole around the vertical axis through its middle.
+  std::size_t inHole = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    inHole += std::hypot(end.positions[3 * i] - end.mean[0], end.positions[3 * i + 2] - end.mean[2]) < 2.0 ? 1 : 0;
+  }
+  EXPECT_LT(inHole, n / 20) << inHole << " of " << n;
 }
 
 }  // namespace
