@@ -82,7 +82,7 @@ TEST_P(Examples, RerunGivesByteIdenticalFiles) {
 
 INSTANTIATE_TEST_SUITE_P(App, Examples,
                          ::testing::Values("softsub-demo.scene", "honey-drop.scene", "two-fluids.scene",
-                                           "jelly-block.scene"),
+                                           "jelly-block.scene", "goo-torus.scene"),
                          exampleTestName);
 
 TEST(Run, EveryExampleIsCovered) {
