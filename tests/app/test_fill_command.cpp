@@ -6,17 +6,12 @@
 #include "app_test_util.h"
 #include "cache/ply_format.h"
 #include "scene/reader.h"
+#include "support/mesh_files.h"
 
 namespace softsub::apptest {
 namespace {
 
-// A closed unit-oriented box [0,a]^3 as an OBJ with quads.
-void writeBoxObj(const fs::path& file, double a) {
-  std::ofstream out(file);
-  for (int k = 0; k < 8; ++k) out << "v " << (k & 1 ? a : 0) << ' ' << (k & 2 ? a : 0) << ' ' << (k & 4 ? a : 0) << '\n';
-  // 1-based, counter-clockwise from outside.
-  out << "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";
-}
+void writeBoxObj(const fs::path& file, double a) { scenarios::writeTextFile(file, scenarios::boxObj(a)); }
 
 TEST(FillCommand, WritesAPlyWhoseCountMatchesTheVolume) {
   TempDir tmp;

@@ -12,6 +12,7 @@
 #include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene/writer.h"
+#include "support/mesh_files.h"
 
 namespace softsub::scene {
 namespace {
@@ -38,21 +39,8 @@ class TempFolder {
   fs::path path_;
 };
 
-void writeText(const fs::path& file, const std::string& text) {
-  fs::create_directories(file.parent_path());
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-}
-
-// A closed box [0,a]^3 as an OBJ with quads, counter-clockwise from outside.
-std::string boxObj(double a) {
-  std::string s;
-  for (int k = 0; k < 8; ++k) {
-    s += "v " + std::to_string(k & 1 ? a : 0) + ' ' + std::to_string(k & 2 ? a : 0) + ' ' +
-         std::to_string(k & 4 ? a : 0) + '\n';
-  }
-  return s + "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";
-}
+void writeText(const fs::path& file, const std::string& text) { scenarios::writeTextFile(file, text); }
+using scenarios::boxObj;
 
 // A scene with one fluid 'goo' filling the mesh at geometry.
 std::string meshScene(const std::string& geometry, double spacing, const std::string& extra = "") {
