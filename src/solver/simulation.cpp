@@ -144,16 +144,15 @@ void Simulation::step() {
   const float dt = static_cast<float>(model_.dt());
   switch (model_.integrator) {
     case Integrator::ExplicitEuler:
-      computeForces();
-      drift(dt);
-      kick(dt);
-      applyWalls();
-      state_.forcesValid = false;
-      break;
     case Integrator::SymplecticEuler:
       computeForces();
-      kick(dt);
-      drift(dt);
+      if (model_.integrator == Integrator::ExplicitEuler) {
+        drift(dt);  // with v_n
+        kick(dt);
+      } else {
+        kick(dt);
+        drift(dt);  // with v_{n+1}
+      }
       applyWalls();
       state_.forcesValid = false;
       break;
