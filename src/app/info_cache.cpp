@@ -40,14 +40,14 @@ void printSimInfo(const std::string& path) {
   std::size_t total = 0;
   for (const FluidSnapshot& f : sim.frame.fluids) total += f.count();
   fmt::print("sim {}: frame {}, time {:g} s, {} fluids, {} particles, {} objects\n", path, sim.frame.frame,
-             sim.frame.time, sim.frame.fluids.size(), groupThousands(total), sim.objects.size());
+             sim.frame.time, sim.frame.fluids.size(), groupThousands(total), sim.frame.objects.size());
   for (const FluidSnapshot& f : sim.frame.fluids) {
     Aabb box;
     for (std::size_t k = 0; k < f.count(); ++k)
       box.add(f.positions[3 * k], f.positions[3 * k + 1], f.positions[3 * k + 2]);
     fmt::print("  {}: {} particles, bounds {}\n", f.name, groupThousands(f.count()), describeBox(box));
   }
-  for (const cache::SimObject& o : sim.objects)
+  for (const cache::SimObject& o : sim.frame.objects)
     fmt::print("  object {}: position {:g} {:g} {:g}, rotation {:g} {:g} {:g} {:g}, scale {:g}, file {}\n",
                o.name, o.position[0], o.position[1], o.position[2], o.rotation[0], o.rotation[1],
                o.rotation[2], o.rotation[3], o.uniformScale, o.filename);

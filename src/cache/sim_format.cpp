@@ -182,7 +182,7 @@ class SimReader {
                "unique names");
         }
       } else if (name == "Object") {
-        SimObject& object = result.objects.emplace_back(readObject(child));
+        SimObject& object = result.frame.objects.emplace_back(readObject(child));
         if (!objectNames.insert(object.name).second) {
           fail(child, "Object/Name",
                fmt::format("duplicate object name '{}'", detail::excerpt(object.name)),
@@ -361,8 +361,8 @@ class SimReader {
 
 }  // namespace
 
-void encodeSimInto(std::string& out, const FrameSnapshot& frame,
-                   std::span<const SimObject> objects) {
+void encodeSimInto(std::string& out, const FrameSnapshot& frame) {
+  const std::vector<SimObject>& objects = frame.objects;
   out.clear();
   std::size_t particles = 0;
   for (const FluidSnapshot& f : frame.fluids) particles += f.count();
@@ -376,9 +376,9 @@ void encodeSimInto(std::string& out, const FrameSnapshot& frame,
   out += "</Simulation>\n";
 }
 
-std::string encodeSim(const FrameSnapshot& frame, std::span<const SimObject> objects) {
+std::string encodeSim(const FrameSnapshot& frame) {
   std::string out;
-  encodeSimInto(out, frame, objects);
+  encodeSimInto(out, frame);
   return out;
 }
 

@@ -12,30 +12,23 @@
 
 namespace softsub::cache {
 
-/// One rigid body's pose at a frame, as the `.sim` file's `<Object>` element holds it.
-struct SimObject {
-  std::string name;                            ///< the body's unique name from the scene
-  double uniformScale = 1;                     ///< the scene's UniformScale
-  std::array<double, 3> position{0, 0, 0};     ///< world position, scene units
-  std::array<double, 4> rotation{1, 0, 0, 0};  ///< unit quaternion w x y z
-  std::string filename;                        ///< the body's geometry file, as in the scene
-};
+/// One rigid body's pose at a frame, as the `.sim` file's `<Object>` element holds it
+/// (name, uniform scale, position, rotation, filename; the other fields are not stored).
+using SimObject = ObjectSnapshot;
 
 /// A decoded `.sim` file. The file stores neither ids, velocities, colours, sizes nor the
 /// frame rate: each fluid's ids are 0..n-1 in file order (the stable-id order), its
-/// velocities are zero, and colour, particleSize and framesPerSecond keep their defaults.
+/// velocities are zero, and colour, particleSize and framesPerSecond keep their defaults;
+/// objects keep only their name, scale, position, rotation and filename.
 struct SimFile {
-  FrameSnapshot frame;             ///< frame number, time and fluid positions
-  std::vector<SimObject> objects;  ///< rigid bodies, in file order (may be empty)
+  FrameSnapshot frame;  ///< frame number, time, fluid positions and objects (in file order)
 };
 
-/// Encodes a frame (and optional rigid bodies) as `.sim` XML text.
-[[nodiscard]] std::string encodeSim(const FrameSnapshot& frame,
-                                    std::span<const SimObject> objects = {});
+/// Encodes a frame (its fluids and objects) as `.sim` XML text.
+[[nodiscard]] std::string encodeSim(const FrameSnapshot& frame);
 
 /// Same as encodeSim, into `out` (cleared first), reusing its capacity.
-void encodeSimInto(std::string& out, const FrameSnapshot& frame,
-                   std::span<const SimObject> objects = {});
+void encodeSimInto(std::string& out, const FrameSnapshot& frame);
 
 /// Parses and validates `.sim` text; InputError with `fileName`, line and element on bad input.
 [[nodiscard]] SimFile decodeSim(std::string_view text, const std::string& fileName);

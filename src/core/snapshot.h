@@ -22,12 +22,27 @@ struct FluidSnapshot {
   [[nodiscard]] std::size_t count() const { return ids.size(); }
 };
 
+/// One rigid body at one frame: the transform that places its geometry file (uniform
+/// scale, then rotation, then translation of the geometry's origin), as the `.sim` file
+/// and packages like Maya want it.
+struct ObjectSnapshot {
+  std::string name;                            ///< the body's unique name from the scene
+  double uniformScale = 1;                     ///< the scene's UniformScale
+  std::array<double, 3> position{0, 0, 0};     ///< where the geometry's origin is, world
+  std::array<double, 4> rotation{1, 0, 0, 0};  ///< unit quaternion w x y z
+  std::string filename;                        ///< geometry file, relative to the frame files
+  std::array<double, 3> velocity{0, 0, 0};     ///< of the centre of mass (not in `.sim`)
+  std::array<double, 3> angularVelocity{0, 0, 0};  ///< radians/s, world axes (not in `.sim`)
+  std::array<double, 3> centerOfMass{0, 0, 0};     ///< world (not in `.sim`)
+};
+
 /// Everything recorded for one frame.
 struct FrameSnapshot {
   std::int64_t frame = 0;            ///< frame number; frame 0 is the initial state
   double time = 0;                   ///< seconds since the start, frame / fps
   double framesPerSecond = 24;       ///< the scene's frame rate (for PDC ticks)
   std::vector<FluidSnapshot> fluids; ///< in scene order
+  std::vector<ObjectSnapshot> objects;  ///< rigid bodies, in scene order
 };
 
 }  // namespace softsub

@@ -21,6 +21,7 @@ struct Buffers {
   float* __restrict r2;
   const std::uint32_t* __restrict slot;
   std::uint32_t* __restrict kept;
+  const std::uint32_t* __restrict owner;  // filled only when the list excludes owners
 };
 
 // Squared distances from (xi, yi, zi) to buffer entries [from, len); the slots of
@@ -39,16 +40,33 @@ inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t 
   return n;
 }
 
+// filter() for a particle whose owner's particles never pair with each other (a rigid
+// body): candidates of the same owner are dropped too.
+inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
+                                  float zi, float cut2, std::uint32_t own) {
+  for (std::uint32_t k = from; k < len; ++k) {
+    const float dx = b.x[k] - xi, dy = b.y[k] - yi, dz = b.z[k] - zi;
+    b.r2[k] = dx * dx + dy * dy + dz * dz;
+  }
+  std::uint32_t n = 0;
+  for (std::uint32_t k = from; k < len; ++k) {
+    b.kept[n] = b.slot[k];
+    n += (b.r2[k] < cut2 && b.owner[k] != own) ? 1u : 0u;
+  }
+  return n;
+}
+
 }  // namespace
 
 void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
-                     const ParticleStore& s, float skin) {
+                     const ParticleStore& s, float skin, const ListOptions& options) {
   const std::size_t n = s.size();
   offsets_.resize(n + 1);
   partners_.clear();
   rowCut2_.resize(table.materials());
   for (std::size_t a = 0; a < rowCut2_.size(); ++a) {
-    const float rc = std::sqrt(table.rowCutoff2(a)) + skin;
+    const float radius = options.rowRadius.empty() ? std::sqrt(table.rowCutoff2(a)) : options.rowRadius[a];
+    const float rc = radius + skin;
     rowCut2_[a] = rc * rc;
   }
   const std::size_t cells = grid.cellCount();
@@ -61,6 +79,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       for (auto* v : {&bx_, &by_, &bz_, &r2_}) v->resize(len);
       slot_.resize(len);
       kept_.resize(len);
+      owner_.resize(len);
     }
     std::uint32_t k = 0;
     auto append = [&](std::uint32_t b, std::uint32_t e) {
@@ -68,14 +87,21 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
         bx_[k] = s.px[j]; by_[k] = s.py[j]; bz_[k] = s.pz[j]; slot_[k] = j;
       }
     };
+    const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
     append(own.begin, own.end);
     for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
-    const Buffers b{bx_.data(), by_.data(), bz_.data(), r2_.data(), slot_.data(), kept_.data()};
+    if (exclusive)
+      for (std::uint32_t q = 0; q < len; ++q) owner_[q] = s.owner[slot_[q]];
+    const Buffers b{bx_.data(), by_.data(), bz_.data(), r2_.data(), slot_.data(), kept_.data(), owner_.data()};
     // Cells come in slot order, so offsets fill in order too.
     for (std::uint32_t i = own.begin; i < own.end; ++i) {
       offsets_[i] = static_cast<std::uint32_t>(partners_.size());
+      const std::uint32_t from = i - own.begin + 1;
+      const float cut2 = rowCut2_[s.material[i]];
       const std::uint32_t kept =
-          filter(b, i - own.begin + 1, len, s.px[i], s.py[i], s.pz[i], rowCut2_[s.material[i]]);
+          exclusive && s.owner[i] >= options.exclusiveOwnersFrom
+              ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i])
+              : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2);
       partners_.insert(partners_.end(), kept_.begin(), kept_.begin() + kept);
     }
   }

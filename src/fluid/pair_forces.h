@@ -14,11 +14,21 @@ namespace softsub::fluid {
 /// its cutoff plus a skin, each unordered pair once. Valid while the two largest
 /// displacements since build() add up to less than the skin and the store has not been
 /// reordered (solver::Simulation checks both).
+/// What else a pair list needs beyond the interaction table (rigid bodies).
+struct ListOptions {
+  /// Per material: list radius before the skin; empty: each row's longest cutoff. Rows
+  /// with contacts (rigid bodies) list pairs out to their contact distance too.
+  std::span<const float> rowRadius;
+  /// Pairs of two particles with the same owner >= this are not listed (the particles
+  /// of one rigid body never interact). The default lists every pair.
+  std::uint32_t exclusiveOwnersFrom = UINT32_MAX;
+};
+
 class PairList {
  public:
-  /// Lists every pair closer than (row cutoff + skin) using `grid` (rebuilt on `store`).
+  /// Lists every pair closer than (row radius + skin) using `grid` (rebuilt on `store`).
   void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
-             const ParticleStore& store, float skin);
+             const ParticleStore& store, float skin, const ListOptions& options = {});
   /// Partners of slot i.
   [[nodiscard]] std::span<const std::uint32_t> partners(std::size_t i) const {
     return {partners_.data() + offsets_[i], partners_.data() + offsets_[i + 1]};
@@ -27,7 +37,8 @@ class PairList {
   [[nodiscard]] std::size_t pairCount() const { return partners_.size(); }
   /// Bytes reserved.
   [[nodiscard]] std::size_t memoryBytes() const {
-    return (offsets_.capacity() + partners_.capacity() + slot_.capacity() + kept_.capacity()) * 4 +
+    return (offsets_.capacity() + partners_.capacity() + slot_.capacity() + kept_.capacity() +
+            owner_.capacity()) * 4 +
            (bx_.capacity() + by_.capacity() + bz_.capacity() + r2_.capacity() + rowCut2_.capacity()) * 4;
   }
 
@@ -37,7 +48,7 @@ class PairList {
   // Build scratch, kept between builds: one cell's candidates (positions, slots,
   // squared distances, kept slots) and each material row's squared list radius.
   std::vector<float> bx_, by_, bz_, r2_, rowCut2_;
-  std::vector<std::uint32_t> slot_, kept_;
+  std::vector<std::uint32_t> slot_, kept_, owner_;
 };
 
 /// Adds to store.f the forces of every listed pair closer than its cutoff (Newton's

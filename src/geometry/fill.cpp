@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include "core/error.h"
 
@@ -376,6 +377,44 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
           "(surfaceOnly samples the surface instead)");
   }
   return result;
+}
+
+}  // namespace softsub::geometry
+
+namespace softsub::geometry {
+
+std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers) {
+  if (points.empty()) return {};
+  Vec3 lo = points.front();
+  for (const Vec3& p : points) lo = lo.cwiseMin(p);
+  // Lattice coordinates packed 21 bits an axis; a wrapped key can only make a site look
+  // occupied, which at worst drops a shell point of a fill over 2 million steps wide.
+  auto key = [&](long x, long y, long z) {
+    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
+           static_cast<std::uint64_t>(z & 0x1FFFFF);
+  };
+  std::vector<std::array<long, 3>> cells(points.size());
+  std::unordered_set<std::uint64_t> occupied;
+  occupied.reserve(points.size() * 2);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3 q = (points[i] - lo) / spacing;
+    cells[i] = {std::lround(q.x()), std::lround(q.y()), std::lround(q.z())};
+    occupied.insert(key(cells[i][0], cells[i][1], cells[i][2]));
+  }
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& c = cells[i];
+    bool shell = false;
+    for (int axis = 0; axis < 3 && !shell; ++axis)
+      for (int step = -layers; step <= layers && !shell; ++step) {
+        if (step == 0) continue;
+        std::array<long, 3> n = c;
+        n[axis] += step;
+        if (n[0] < 0 || n[1] < 0 || n[2] < 0 || !occupied.contains(key(n[0], n[1], n[2]))) shell = true;
+      }
+    if (shell) out.push_back(points[i]);
+  }
+  return out;
 }
 
 }  // namespace softsub::geometry

@@ -41,3 +41,12 @@ std::uint64_t meshFillBound(const TriangleMesh& mesh, double spacing);
 MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options);
 
 }  // namespace softsub::geometry
+
+namespace softsub::geometry {
+
+/// The points of a lattice fill (step `spacing`) that lie within `layers` lattice steps of
+/// an empty lattice site along x, y or z: the outer shell of a solid fill. A rigid body
+/// keeps only its shell: interior particles never touch anything. Order is kept.
+[[nodiscard]] std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers);
+
+}  // namespace softsub::geometry

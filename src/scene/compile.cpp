@@ -5,6 +5,7 @@
 
 #include "geometry/fill.h"
 #include "geometry/mesh_loader.h"
+#include "scene/bodies.h"
 #include "scene/fill.h"
 #include "scene/reader.h"
 
@@ -109,6 +110,7 @@ Compiled compile(const SceneDesc& desc) {
                 v.y(), v.z(), static_cast<std::uint16_t>(f), static_cast<std::uint32_t>(f));
     nextId += info.count;
   }
+  addBodies(desc, m, out.state, out.objectMeshes);
   return out;
 }
 

@@ -1,5 +1,8 @@
 #pragma once
 /// SceneDesc -> Model (read-only) + State (mutable).
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
 #include "scene/scene_desc.h"
 #include "solver/model.h"
 
@@ -9,11 +12,14 @@ namespace softsub::scene {
 struct Compiled {
   solver::Model model;
   solver::State state;
+  /// Each object's geometry in its own coordinates before UniformScale (scene order):
+  /// what the `.sim` transforms place, written once beside the frames.
+  std::vector<geometry::TriangleMesh> objectMeshes;
 };
 
 /// Builds the model (materials, interaction table, container, options) and the initial
 /// state (every fluid's explicit particles then its fills, in scene order; stable ids in
-/// that order) from a validated description. Mesh fills load their mesh from
+/// that order; then every object's particles, see addBodies) from a validated description. Mesh fills load their mesh from
 /// desc.baseDir / Geometry again (IoError or InputError if it changed since reading).
 Compiled compile(const SceneDesc& desc);
 

@@ -81,6 +81,38 @@ struct FluidDesc {
   }
 };
 
+/// `<Object>` Shape: the primitive whose inertia tensor approximates the body, or the
+/// exact inertia of the closed mesh.
+enum class ObjectShape : std::uint8_t { Mesh, Sphere, Cone, Box, Cylinder };
+
+/// `<Object>`: one rigid body made of particles.
+struct ObjectDesc {
+  std::string name;              ///< unique among objects and fluids; reader default "object<N>", N from 1
+  std::string geometry;          ///< mesh file as written, relative to SceneDesc::baseDir; empty: primitive
+  ObjectShape shape = ObjectShape::Mesh;  ///< the reader sets Mesh when Geometry is given and Shape is not
+  std::vector<double> size;      ///< primitive extents: radius | radius height | width height depth; empty: from the mesh
+  double particleSize = 0;       ///< particle diameter; 0: 1/20 of the largest extent (after scaling)
+  double uniformScale = 1;       ///< scales the geometry (and Size) about its origin
+  Vec3 initialPosition{0, 0, 0};         ///< where the geometry's origin is placed
+  Vec3 initialRotation{0, 0, 0};         ///< Euler degrees, applied X then Y then Z
+  Vec3 initialLinearVelocity{0, 0, 0};   ///< of the centre of mass, units/s
+  Vec3 initialAngularVelocity{0, 0, 0};  ///< world axes, degrees/s
+  double normalAttenuation = 0.5;        ///< restitution e in [0,1]
+  double tangentAttenuation = 0.1;       ///< friction in [0,1]
+  double mass = 1;                       ///< > 0
+  bool isDynamic = true;                 ///< false: static, never moves
+  int line = 0;                          ///< source line; not compared
+  bool operator==(const ObjectDesc& o) const {
+    return name == o.name && geometry == o.geometry && shape == o.shape && size == o.size &&
+           particleSize == o.particleSize && uniformScale == o.uniformScale &&
+           initialPosition == o.initialPosition && initialRotation == o.initialRotation &&
+           initialLinearVelocity == o.initialLinearVelocity &&
+           initialAngularVelocity == o.initialAngularVelocity &&
+           normalAttenuation == o.normalAttenuation && tangentAttenuation == o.tangentAttenuation &&
+           mass == o.mass && isDynamic == o.isDynamic;
+  }
+};
+
 /// A function plus its velocity terms: one entry of the dictionary of interactions.
 struct InteractionDesc {
   forces::PairFunction function = forces::Linear{};
@@ -89,7 +121,9 @@ struct InteractionDesc {
   bool operator==(const InteractionDesc&) const = default;
 };
 
-/// `<Pair>`: an override for fluids A and B (A == B replaces A's own function).
+/// `<Pair>`: an override for A and B, each a fluid or an object name (A == B, a fluid,
+/// replaces that fluid's own function; a fluid and an object replace FluidObject for them;
+/// two objects are refused: objects collide by impulses, not functions).
 struct PairDesc {
   std::string a, b;
   InteractionDesc interaction;
@@ -103,6 +137,9 @@ struct PairDesc {
 struct InteractionsDesc {
   /// Different fluids, unless a Pair overrides: seed default linear, [0,5], cutoff 1.
   InteractionDesc fluidFluid{forces::Linear{5, 1, 0, 5}, 0, 0};
+  /// A fluid and an object, unless a Pair overrides: seed default linear, [0,5], cutoff
+  /// 1.5, plus our relative-velocity term (the seed's "main missing improvement").
+  InteractionDesc fluidObject{forces::Linear{5, 1.5, 0, 5}, 0, 2};
   std::vector<PairDesc> pairs;
   bool operator==(const InteractionsDesc&) const = default;
 };
@@ -113,13 +150,14 @@ struct SceneDesc {
   CameraDesc camera;
   std::optional<EnvironmentDesc> environment;  ///< absent: no walls at all
   std::vector<FluidDesc> fluids;
+  std::vector<ObjectDesc> objects;
   InteractionsDesc interactions;
   /// The folder relative paths (mesh fills' Geometry) resolve against: the scene file's
   /// folder, absolute. Where the scene came from, not what it says: not compared.
   std::string baseDir;
   bool operator==(const SceneDesc& o) const {
     return simulation == o.simulation && camera == o.camera && environment == o.environment &&
-           fluids == o.fluids && interactions == o.interactions;
+           fluids == o.fluids && objects == o.objects && interactions == o.interactions;
   }
 };
 

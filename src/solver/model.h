@@ -10,6 +10,7 @@
 #include "core/math.h"
 #include "core/particle_store.h"
 #include "forces/interaction_table.h"
+#include "rigid/body.h"
 
 namespace softsub::solver {
 
@@ -38,7 +39,8 @@ struct FluidInfo {
 /// Per material (row of the interaction table): what the integrator needs.
 struct MaterialInfo {
   float inverseMass = 1;
-  float radius = 0.5f;  ///< distance kept from the container walls
+  float radius = 0.5f;  ///< distance kept from the container walls; for bodies, the largest particle radius
+  bool body = false;    ///< a row of rigid-body particles (their motion comes from their bodies)
 };
 
 /// Everything that does not change during a run.
@@ -50,7 +52,12 @@ struct Model {
   Integrator integrator = Integrator::SymplecticEuler;
   std::optional<Container> container;
   std::vector<FluidInfo> fluids;        ///< entity index = fluid index
-  std::vector<MaterialInfo> materials;  ///< material index = fluid index for now
+  /// Rigid bodies: entity index = fluids.size() + body index; their particles' ids follow
+  /// every fluid's.
+  rigid::BodySet bodies;
+  /// Rows of the interaction table: one per fluid (row = fluid index), then the bodies'
+  /// rows (bodies with the same interactions share one).
+  std::vector<MaterialInfo> materials;
   forces::InteractionTable table;
   /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
   /// often (docs/architecture.md, "The pair list").
@@ -58,13 +65,14 @@ struct Model {
 
   /// Seconds per substep.
   [[nodiscard]] double dt() const { return 1.0 / (framesPerSecond * substeps); }
-  /// Total particles over all fluids.
+  /// Total particles over all fluids and bodies.
   [[nodiscard]] std::size_t particleCount() const;
 };
 
 /// Everything that changes during a run.
 struct State {
   ParticleStore particles;
+  std::vector<rigid::BodyState> bodies;  ///< one per Model::bodies.bodies
   std::int64_t frame = 0;     ///< frames completed; the state is at time frame / fps
   bool forcesValid = false;   ///< store.f holds the forces of the current positions
 };

@@ -12,11 +12,41 @@ namespace softsub::solver {
 std::size_t Model::particleCount() const {
   std::size_t n = 0;
   for (const FluidInfo& f : fluids) n += f.count;
-  return n;
+  return n + bodies.particleCount();
 }
 
 Simulation::Simulation(const Model& model, State state) : model_(model), state_(std::move(state)) {
-  const double c = model_.table.maxCutoff();
+  double c = model_.table.maxCutoff();
+  const std::size_t nm = model_.materials.size();
+  for (const MaterialInfo& m : model_.materials) {
+    materialInverseMass_.push_back(m.inverseMass);
+    materialRadius_.push_back(m.radius);
+  }
+  if (!model_.bodies.empty()) {
+    // Contacts need pairs out to the sum of the two radii: body/body for impulses,
+    // fluid/body to keep fluid out of bodies. Lists reach that far at least.
+    float bodyRadius = 0, anyRadius = 0;
+    for (const MaterialInfo& m : model_.materials) {
+      anyRadius = std::max(anyRadius, m.radius);
+      if (m.body) bodyRadius = std::max(bodyRadius, m.radius);
+    }
+    rowRadius_.resize(nm);
+    for (std::size_t a = 0; a < nm; ++a) {
+      const MaterialInfo& m = model_.materials[a];
+      const float contact = m.radius + (m.body ? anyRadius : bodyRadius);
+      rowRadius_[a] = std::max(std::sqrt(model_.table.rowCutoff2(a)), contact);
+      c = std::max(c, static_cast<double>(rowRadius_[a]));
+    }
+    listOptions_.rowRadius = rowRadius_;
+    listOptions_.exclusiveOwnersFrom = model_.bodies.firstEntity;
+    if (model_.container) {
+      const Container& box = *model_.container;
+      walls_ = rigid::Walls{box.lo, box.hi, box.closed, box.restitution, box.friction};
+    }
+    // Body particles start where their bodies put them.
+    rigid_.findBodySlots(model_.bodies, state_.particles);
+    rigid_.writeParticles(model_.bodies, state_.bodies, state_.particles);
+  }
   cellSize_ = static_cast<float>(c > 0 ? c : 1.0);
   skin_ = static_cast<float>(model_.pairListSkin) * cellSize_;
 }
@@ -53,7 +83,8 @@ void Simulation::computeForces() {
   if (listIsStale()) {
     // Only here is the store re-sorted: the list holds slots.
     grid_.rebuild(s, cellSize_ + skin_);
-    list_.build(grid_, model_.table, s, skin_);
+    list_.build(grid_, model_.table, s, skin_, listOptions_);
+    if (!model_.bodies.empty()) listRigidPairs();
     refX_ = s.px;
     refY_ = s.py;
     refZ_ = s.pz;
@@ -65,6 +96,26 @@ void Simulation::computeForces() {
   std::fill(s.fz.begin(), s.fz.end(), 0.0f);
   fluid::accumulatePairForces(list_, model_.table, s);
   state_.forcesValid = true;
+}
+
+// The pairs of the list that involve a body particle (the store was just re-sorted).
+void Simulation::listRigidPairs() {
+  const ParticleStore& s = state_.particles;
+  rigid_.findBodySlots(model_.bodies, s);
+  rigidPairs_.clear();
+  const std::uint32_t first = model_.bodies.firstEntity;
+  const std::uint32_t* owner = s.owner.data();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const bool bodyI = owner[i] >= first;
+    for (const std::uint32_t j : list_.partners(i))
+      if (bodyI || owner[j] >= first) rigidPairs_.push_back({static_cast<std::uint32_t>(i), j});
+  }
+}
+
+void Simulation::stepBodies(double dt) {
+  if (model_.bodies.empty()) return;
+  rigid_.step(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
+              materialRadius_, walls_ ? &*walls_ : nullptr, model_.gravity, dt);
 }
 
 // v += (f / m + g) h for every particle.
@@ -140,6 +191,9 @@ void Simulation::applyWalls() {
 //   symplectic Euler:            forces at (x_n, v_n); v += a dt; x += v_{n+1} dt
 //   velocity Verlet:             v += a_n dt/2; x += v dt; forces at x_{n+1} (with the
 //                                half-step velocity); v += a_{n+1} dt/2
+// Rigid bodies step once per substep whatever the integrator (semi-implicit Euler with
+// impulses: Verlet has no explicit velocity for impulses to change, seed 2.3.4), after
+// the fluid has moved, with the forces of the last evaluation (docs/architecture.md).
 void Simulation::step() {
   const float dt = static_cast<float>(model_.dt());
   switch (model_.integrator) {
@@ -154,6 +208,7 @@ void Simulation::step() {
         drift(dt);  // with v_{n+1}
       }
       applyWalls();
+      stepBodies(model_.dt());
       state_.forcesValid = false;
       break;
     case Integrator::VelocityVerlet:
@@ -161,6 +216,7 @@ void Simulation::step() {
       kick(0.5f * dt);
       drift(dt);
       applyWalls();
+      stepBodies(model_.dt());
       computeForces();
       kick(0.5f * dt);
       break;
@@ -173,7 +229,23 @@ void Simulation::advanceFrame() {
   checkFinite();
 }
 
+std::string Simulation::entityName(std::uint32_t owner) const {
+  if (owner < model_.fluids.size()) return "fluid '" + model_.fluids[owner].name + "'";
+  return "object '" + model_.bodies.bodies.at(owner - model_.bodies.firstEntity).name + "'";
+}
+
 void Simulation::checkFinite() const {
+  for (std::size_t b = 0; b < state_.bodies.size(); ++b) {
+    const rigid::BodyState& st = state_.bodies[b];
+    if (st.position.allFinite() && st.velocity.allFinite() && st.angularMomentum.allFinite() &&
+        st.orientation.coeffs().allFinite())
+      continue;
+    std::ostringstream msg;
+    msg << "simulation blew up at frame " << state_.frame << ": object '" << model_.bodies.bodies[b].name
+        << "': its position, velocity or rotation is not finite (forces too stiff for the time step: "
+           "raise Substeps, lower the FluidObject function or check Mass)";
+    throw BlowUpError(msg.str());
+  }
   const ParticleStore& s = state_.particles;
   const std::vector<float>* arrays[6] = {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz};
   static const char* names[6] = {"position x", "position y", "position z",
@@ -182,10 +254,9 @@ void Simulation::checkFinite() const {
     const std::vector<float>& v = *arrays[a];
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (std::isfinite(v[i])) continue;
-      const FluidInfo& f = model_.fluids.at(s.owner[i]);
       std::ostringstream msg;
-      msg << "simulation blew up at frame " << state_.frame << ": fluid '" << f.name
-          << "', particle id " << s.id[i] << ": " << names[a] << " is " << v[i]
+      msg << "simulation blew up at frame " << state_.frame << ": " << entityName(s.owner[i])
+          << ", particle id " << s.id[i] << ": " << names[a] << " is " << v[i]
           << " (forces too stiff for the time step: raise Substeps, lower MaximumForce or Viscosity)";
       throw BlowUpError(msg.str());
     }
@@ -216,6 +287,23 @@ void Simulation::snapshot(FrameSnapshot& out) const {
       fs.velocities[3 * k] = s.vx[slot]; fs.velocities[3 * k + 1] = s.vy[slot]; fs.velocities[3 * k + 2] = s.vz[slot];
     }
   }
+  const std::vector<rigid::BodyInfo>& bodies = model_.bodies.bodies;
+  out.objects.resize(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const rigid::BodyInfo& info = bodies[b];
+    const rigid::BodyState& st = state_.bodies[b];
+    ObjectSnapshot& o = out.objects[b];
+    o.name = info.name;
+    o.uniformScale = info.uniformScale;
+    const Vec3 origin = st.position + st.orientation * info.originInBody;
+    o.position = {origin.x(), origin.y(), origin.z()};
+    o.rotation = {st.orientation.w(), st.orientation.x(), st.orientation.y(), st.orientation.z()};
+    o.filename = info.geometryFile;
+    o.velocity = {st.velocity.x(), st.velocity.y(), st.velocity.z()};
+    const Vec3 w = info.dynamic ? rigid::angularVelocity(info, st) : Vec3::Zero();
+    o.angularVelocity = {w.x(), w.y(), w.z()};
+    o.centerOfMass = {st.position.x(), st.position.y(), st.position.z()};
+  }
 }
 
 FrameSnapshot Simulation::snapshot() const {
@@ -232,6 +320,8 @@ std::size_t Simulation::memoryBytes() const {
   // The store's permute scratch is one array of each type.
   b += s.size() * (4 + 4 + 2);
   b += list_.memoryBytes() + (refX_.capacity() + refY_.capacity() + refZ_.capacity()) * 4;
+  b += rigidPairs_.capacity() * sizeof(rigid::SlotPair) + rigid_.bodySlots().size() * 4;
+  b += model_.bodies.particleCount() * 12;  // body-space offsets
   return b + grid_.memoryBytes() + slotOfId_.capacity() * 4;
 }
 

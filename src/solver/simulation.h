@@ -1,12 +1,14 @@
 #pragma once
 /// The stepper: the seed's stages, in order, on (Model, State).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/snapshot.h"
 #include "fluid/pair_forces.h"
 #include "neighbors/cell_grid.h"
+#include "rigid/solver.h"
 #include "solver/model.h"
 
 namespace softsub::solver {
@@ -42,12 +44,18 @@ class Simulation {
   /// Throws BlowUpError naming the first non-finite position/velocity, if any.
   void checkFinite() const;
 
+  /// The rigid-body solver (contacts of the last substep, tests).
+  [[nodiscard]] const rigid::RigidSolver& rigidSolver() const { return rigid_; }
+
  private:
   void computeForces();            // stages 2-3: grid + pair list when stale, pair forces
   [[nodiscard]] bool listIsStale() const;
   void kick(float h);    // v += (f/m + g) h
   void drift(float dt);  // x += v dt
   void applyWalls();
+  void stepBodies(double dt);
+  void listRigidPairs();
+  [[nodiscard]] std::string entityName(std::uint32_t owner) const;
 
   const Model& model_;
   State state_;
@@ -59,6 +67,12 @@ class Simulation {
   std::int64_t listBuilds_ = 0;
   std::vector<float> refX_, refY_, refZ_;  // positions when the list was built
   mutable std::vector<std::uint32_t> slotOfId_;
+  // Rigid bodies.
+  rigid::RigidSolver rigid_;
+  std::optional<rigid::Walls> walls_;
+  std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
+  std::vector<float> rowRadius_, materialInverseMass_, materialRadius_;
+  fluid::ListOptions listOptions_;
 };
 
 }  // namespace softsub::solver

@@ -75,7 +75,7 @@ TEST(SimFormat, RandomFloatsRoundTripBitExact) {
   const SimFile back = decodeSim(encodeSim(frame), "rt.sim");
   EXPECT_EQ(back.frame.frame, 1234);
   EXPECT_EQ(back.frame.time, frame.time);
-  EXPECT_TRUE(back.objects.empty());
+  EXPECT_TRUE(back.frame.objects.empty());
   ASSERT_EQ(back.frame.fluids.size(), 2U);
   for (std::size_t i = 0; i < 2; ++i) {
     const FluidSnapshot& b = back.frame.fluids[i];
@@ -120,18 +120,19 @@ TEST(SimFormat, EmptyFramesAndFluidsRoundTrip) {
 }
 
 TEST(SimFormat, ObjectsRoundTripAndAreAcceptedInAnyOrder) {
-  const FrameSnapshot frame = makeFrame();
-  std::vector<SimObject> objects(2);
+  FrameSnapshot frame = makeFrame();
+  std::vector<SimObject>& objects = frame.objects;
+  objects.resize(2);
   objects[0] = {"bowl & lid", 1.5, {1, -2, 0.25}, {0.5, 0.5, 0.5, 0.5}, "bowlGeo/bowl.obj"};
   objects[1] = {"ball", 1, {0, 0, 0}, {1, 0, 0, 0}, ""};
-  const SimFile back = decodeSim(encodeSim(frame, objects), "o.sim");
-  ASSERT_EQ(back.objects.size(), 2U);
+  const SimFile back = decodeSim(encodeSim(frame), "o.sim");
+  ASSERT_EQ(back.frame.objects.size(), 2U);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_EQ(back.objects[i].name, objects[i].name);
-    EXPECT_EQ(back.objects[i].uniformScale, objects[i].uniformScale);
-    EXPECT_EQ(back.objects[i].position, objects[i].position);
-    EXPECT_EQ(back.objects[i].rotation, objects[i].rotation);
-    EXPECT_EQ(back.objects[i].filename, objects[i].filename);
+    EXPECT_EQ(back.frame.objects[i].name, objects[i].name);
+    EXPECT_EQ(back.frame.objects[i].uniformScale, objects[i].uniformScale);
+    EXPECT_EQ(back.frame.objects[i].position, objects[i].position);
+    EXPECT_EQ(back.frame.objects[i].rotation, objects[i].rotation);
+    EXPECT_EQ(back.frame.objects[i].filename, objects[i].filename);
   }
   EXPECT_EQ(back.frame.fluids.size(), 2U);
 
@@ -142,9 +143,9 @@ TEST(SimFormat, ObjectsRoundTripAndAreAcceptedInAnyOrder) {
       "<Object><Name>o</Name><Rotation>1 0 0 0</Rotation><Position>1 2 3</Position></Object>\n"
       "</Simulation>";
   const SimFile mixed = decodeSim(handWritten, "mixed.sim");
-  ASSERT_EQ(mixed.objects.size(), 1U);
-  EXPECT_EQ(mixed.objects[0].uniformScale, 1.0);
-  EXPECT_EQ(mixed.objects[0].filename, "");
+  ASSERT_EQ(mixed.frame.objects.size(), 1U);
+  EXPECT_EQ(mixed.frame.objects[0].uniformScale, 1.0);
+  EXPECT_EQ(mixed.frame.objects[0].filename, "");
   EXPECT_EQ(mixed.frame.fluids[0].positions, (std::vector<float>{1, 2, 3}));
 }
 

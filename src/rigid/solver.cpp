@@ -1,0 +1,409 @@
+#include "rigid/solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace softsub::rigid {
+
+namespace {
+
+// Effective inverse mass of a contact along d: 1/ma + 1/mb + (ra x d) . Ia⁻¹ (ra x d) + (rb x d) . Ib⁻¹ (rb x d).
+double inverseMassAlong(double invMa, const Mat3& invIa, const Vec3& ra, double invMb, const Mat3& invIb,
+                        const Vec3& rb, const Vec3& d) {
+  const Vec3 ca = ra.cross(d);
+  double k = invMa + ca.dot(invIa * ca);
+  if (invMb > 0 || !invIb.isZero()) {
+    const Vec3 cb = rb.cross(d);
+    k += invMb + cb.dot(invIb * cb);
+  }
+  return k;
+}
+
+}  // namespace
+
+void RigidSolver::findBodySlots(const BodySet& set, const ParticleStore& s) {
+  bodySlots_.clear();
+  if (set.empty()) return;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.owner[i] >= set.firstEntity) bodySlots_.push_back(static_cast<std::uint32_t>(i));
+}
+
+void RigidSolver::writeParticles(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& s) {
+  const std::size_t nb = set.bodies.size();
+  rot_.resize(nb);
+  omega_.resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    rot_[b] = states[b].orientation.toRotationMatrix();
+    omega_[b] = set.bodies[b].dynamic ? angularVelocity(set.bodies[b], states[b]) : Vec3::Zero();
+  }
+  for (const std::uint32_t i : bodySlots_) {
+    const std::uint32_t b = s.owner[i] - set.firstEntity;
+    const std::uint32_t k = s.id[i] - set.firstId;
+    const Vec3 r = rot_[b] * Vec3(set.ox[k], set.oy[k], set.oz[k]);
+    const Vec3 x = states[b].position + r;
+    const Vec3 v = states[b].velocity + omega_[b].cross(r);
+    s.px[i] = static_cast<float>(x.x()); s.py[i] = static_cast<float>(x.y()); s.pz[i] = static_cast<float>(x.z());
+    s.vx[i] = static_cast<float>(v.x()); s.vy[i] = static_cast<float>(v.y()); s.vz[i] = static_cast<float>(v.z());
+  }
+}
+
+// The seed's particle → owner "event": the forces on a body's particles add up to a
+// force on the body and a torque about its centre of mass.
+void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& s) {
+  const std::size_t nb = set.bodies.size();
+  force_.assign(nb, Vec3::Zero());
+  torque_.assign(nb, Vec3::Zero());
+  for (const std::uint32_t i : bodySlots_) {
+    const std::uint32_t b = s.owner[i] - set.firstEntity;
+    const Vec3 f(s.fx[i], s.fy[i], s.fz[i]);
+    const Vec3 r = Vec3(s.px[i], s.py[i], s.pz[i]) - states[b].position;
+    force_[b] += f;
+    torque_[b] += r.cross(f);
+  }
+}
+
+void RigidSolver::collectContacts(const BodySet& set, const ParticleStore& s, std::span<const SlotPair> pairs,
+                                  const Walls* walls) {
+  contacts_.clear();
+  const std::uint32_t first = set.firstEntity;
+  // Body/body: overlapping particles of two bodies, one of them dynamic.
+  for (const SlotPair& p : pairs) {
+    std::uint32_t i = p[0], j = p[1];
+    if (s.owner[i] < first || s.owner[j] < first) continue;  // a fluid particle: pushFluidOut
+    std::uint32_t a = s.owner[i] - first, b = s.owner[j] - first;
+    if (a == b) continue;
+    const BodyInfo& A = set.bodies[a];
+    const BodyInfo& B = set.bodies[b];
+    if (!A.dynamic && !B.dynamic) continue;
+    const Vec3 xi(s.px[i], s.py[i], s.pz[i]), xj(s.px[j], s.py[j], s.pz[j]);
+    const Vec3 d = xi - xj;
+    const double reach = A.particleRadius + B.particleRadius;
+    const double r2 = d.squaredNorm();
+    if (!(r2 < reach * reach) || r2 == 0) continue;
+    const double r = std::sqrt(r2);
+    Contact c;
+    c.normal = d / r;
+    const Vec3 point = xj + c.normal * (B.particleRadius - 0.5 * (reach - r));
+    if (!A.dynamic) {  // keep the dynamic body as a
+      std::swap(a, b);
+      c.normal = -c.normal;
+    }
+    c.a = static_cast<std::int32_t>(a);
+    c.b = static_cast<std::int32_t>(b);
+    c.depth = reach - r;
+    c.slop = settings.slop * std::min(A.particleRadius, B.particleRadius);
+    c.restitution = 0.5 * (A.restitution + B.restitution);
+    c.friction = 0.5 * (A.friction + B.friction);
+    c.ra = point - pos_[a];
+    c.rb = point - pos_[b];
+    contacts_.push_back(c);
+  }
+  // Body/walls: each particle of a dynamic body against each plane.
+  if (!walls) return;
+  for (const std::uint32_t i : bodySlots_) {
+    const std::uint32_t a = s.owner[i] - first;
+    const BodyInfo& A = set.bodies[a];
+    if (!A.dynamic) continue;
+    const double rad = A.particleRadius;
+    const double x[3] = {s.px[i], s.py[i], s.pz[i]};
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int side = -1; side <= 1; side += 2) {
+        if (side == 1 && axis == 1 && !walls->closed) continue;
+        const double depth = side < 0 ? (walls->lo[axis] + rad) - x[axis] : x[axis] - (walls->hi[axis] - rad);
+        if (!(depth > 0)) continue;
+        Contact c;
+        c.a = static_cast<std::int32_t>(a);
+        c.b = -1;
+        c.wall = 2 * axis + (side > 0 ? 1 : 0);
+        c.normal = Vec3::Zero();
+        c.normal[axis] = -side;  // into the container
+        c.depth = depth;
+        c.slop = settings.slop * rad;
+        c.restitution = 0.5 * (A.restitution + walls->restitution);
+        c.friction = 0.5 * (A.friction + walls->friction);
+        Vec3 point(x[0], x[1], x[2]);
+        point[axis] = side < 0 ? walls->lo[axis] : walls->hi[axis];
+        c.ra = point - pos_[a];
+        contacts_.push_back(c);
+      }
+    }
+  }
+}
+
+namespace {
+
+struct BodyRefs {
+  std::vector<Vec3>& vel;
+  std::vector<Vec3>& omega;
+  const std::vector<Mat3>& invInertia;
+  const std::vector<double>& invMass;
+
+  [[nodiscard]] Vec3 relative(const Contact& c) const {
+    Vec3 v = vel[c.a] + omega[c.a].cross(c.ra);
+    if (c.b >= 0) v -= vel[c.b] + omega[c.b].cross(c.rb);
+    return v;
+  }
+  void apply(const Contact& c, const Vec3& impulse) {
+    vel[c.a] += impulse * invMass[c.a];
+    omega[c.a] += invInertia[c.a] * c.ra.cross(impulse);
+    if (c.b >= 0) {
+      vel[c.b] -= impulse * invMass[c.b];
+      omega[c.b] -= invInertia[c.b] * c.rb.cross(impulse);
+    }
+  }
+};
+
+const Mat3 kZero3 = Mat3::Zero();
+
+}  // namespace
+
+// The contacts between one pair of bodies (or a body and one wall) are many touching
+// particles. Solved one by one, the order they are visited in breaks the symmetry of the
+// configuration: a body at rest picks up spin and creeps, and sweeps do not converge in
+// time. When the normals of a pair agree (a face, an edge or a point of contact: every
+// normal within about 25 degrees of their mean), the pair keeps at most four contacts
+// that span its contact area (the deepest, the farthest from it, the farthest from the
+// line through those two, and the farthest on the other side of that line: a face's
+// corners), all along the mean normal. Four contacts in a plane pin a resting body's
+// vertical motion and tilts exactly, and the sweeps converge in a few iterations. Pairs
+// whose normals disagree (a ring around a post) keep all their contacts.
+void RigidSolver::reduceContacts() {
+  if (contacts_.size() < 2) return;
+  auto key = [](const Contact& c) { return std::tuple(c.a, c.b, c.wall); };
+  std::stable_sort(contacts_.begin(), contacts_.end(),
+                   [&](const Contact& x, const Contact& y) { return key(x) < key(y); });
+  std::size_t out = 0;
+  for (std::size_t begin = 0; begin < contacts_.size();) {
+    std::size_t end = begin + 1;
+    while (end < contacts_.size() && key(contacts_[end]) == key(contacts_[begin])) ++end;
+    double weight = 0;
+    Vec3 normal = Vec3::Zero();
+    std::size_t deepest = begin;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Contact& c = contacts_[k];
+      weight += c.depth;
+      normal += c.depth * c.normal;
+      if (c.depth > contacts_[deepest].depth) deepest = k;
+    }
+    if (end - begin <= 4 || !(normal.norm() >= 0.9 * weight)) {
+      for (std::size_t k = begin; k < end; ++k) contacts_[out++] = contacts_[k];
+      begin = end;
+      continue;
+    }
+    normal.normalize();
+    auto argmax = [&](auto score) {
+      std::size_t best = begin;
+      double bestScore = -1;
+      for (std::size_t k = begin; k < end; ++k) {
+        const double v = score(contacts_[k].ra);
+        if (v > bestScore) { bestScore = v; best = k; }
+      }
+      return std::pair{best, bestScore};
+    };
+    const Vec3 p1 = contacts_[deepest].ra;
+    const auto [i2, d2] = argmax([&](const Vec3& p) { return (p - p1).squaredNorm(); });
+    const Vec3 dir = contacts_[i2].ra - p1;
+    const auto [i3, a3] = argmax([&](const Vec3& p) { return (p - p1).cross(dir).squaredNorm(); });
+    const Vec3 side = (contacts_[i3].ra - p1).cross(dir);
+    const auto [i4, a4] = argmax([&](const Vec3& p) { return -(p - p1).cross(dir).dot(side); });
+    std::size_t picked[4] = {deepest, i2, i3, i4};
+    int count = 1;
+    if (d2 > 0) picked[count++] = i2;
+    if (d2 > 0 && a3 > 0) picked[count++] = i3;
+    if (d2 > 0 && a3 > 0 && a4 > 0) picked[count++] = i4;
+    Contact kept[4];
+    for (int k = 0; k < count; ++k) {
+      kept[k] = contacts_[picked[k]];
+      kept[k].normal = normal;
+    }
+    for (int k = 0; k < count; ++k) contacts_[out++] = kept[k];
+    begin = end;
+  }
+  contacts_.resize(out);
+}
+
+void RigidSolver::prepareContacts(double dt, const Vec3& gravity) {
+  // Below this approach speed a contact is resting: one substep of gravity (with margin)
+  // must not bounce, or a body at rest would jitter.
+  const double restingSpeed = 3.0 * gravity.norm() * dt + 1e-9;
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_};
+  for (Contact& c : contacts_) {
+    const double ima = invMass_[c.a];
+    const Mat3& iia = invInertia_[c.a];
+    const double imb = c.b >= 0 ? invMass_[c.b] : 0.0;
+    const Mat3& iib = c.b >= 0 ? invInertia_[c.b] : kZero3;
+    c.massN = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.normal);
+    const Vec3 v = refs.relative(c);
+    const double vn = v.dot(c.normal);
+    const Vec3 vt = v - vn * c.normal;
+    const double vtLen = vt.norm();
+    if (vtLen > 1e-12) {
+      c.t1 = vt / vtLen;
+    } else {  // any tangent
+      c.t1 = std::abs(c.normal.x()) < 0.9 ? c.normal.cross(Vec3::UnitX()).normalized()
+                                          : c.normal.cross(Vec3::UnitY()).normalized();
+    }
+    c.t2 = c.normal.cross(c.t1);
+    c.massT1 = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.t1);
+    c.massT2 = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.t2);
+    const bool impact = vn < -restingSpeed;
+    // An impact bounces with restitution e and keeps (1 - friction) of its sliding speed
+    // (the seed's attenuations); a resting contact neither bounces nor slides (Coulomb).
+    c.targetN = impact ? -c.restitution * vn : 0.0;
+    c.targetT1 = impact ? (1.0 - c.friction) * vtLen : 0.0;
+    c.lambdaN = c.lambdaT1 = c.lambdaT2 = c.lambdaP = 0;
+  }
+}
+
+// Sequential impulses (projected Gauss-Seidel) with accumulated, clamped impulses: the
+// normal impulse of a contact never pulls, the friction impulse stays inside the
+// Coulomb disk |lambda_t| <= friction * lambda_n. The impulse per contact is the seed's
+// J = -(1 + e) v_rel . n / (1/m1 + 1/m2 + (I1⁻¹ (r1 x n) x r1 + I2⁻¹ (r2 x n) x r2) . n),
+// reached iteratively so that many contacts between the same bodies share it.
+void RigidSolver::solveVelocities() {
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_};
+  for (int it = 0; it < settings.velocityIterations; ++it) {
+    for (Contact& c : contacts_) {
+      // Friction first, with the normal impulse of the previous sweep as its bound.
+      const Vec3 v = refs.relative(c);
+      const double old1 = c.lambdaT1, old2 = c.lambdaT2;
+      double l1 = c.lambdaT1 + c.massT1 * (c.targetT1 - v.dot(c.t1));
+      double l2 = c.lambdaT2 + c.massT2 * (0.0 - v.dot(c.t2));
+      const double bound = c.friction * c.lambdaN;
+      const double len = std::sqrt(l1 * l1 + l2 * l2);
+      if (len > bound) {
+        const double k = len > 0 ? bound / len : 0.0;
+        l1 *= k;
+        l2 *= k;
+      }
+      c.lambdaT1 = l1;
+      c.lambdaT2 = l2;
+      refs.apply(c, (l1 - old1) * c.t1 + (l2 - old2) * c.t2);
+
+      const double vn = refs.relative(c).dot(c.normal);
+      const double next = std::max(0.0, c.lambdaN + c.massN * (c.targetN - vn));
+      refs.apply(c, (next - c.lambdaN) * c.normal);
+      c.lambdaN = next;
+    }
+  }
+}
+
+// The seed's stage 5: what overlap is left beyond the slop is removed over a few substeps
+// by pseudo-velocities that move the bodies but add no momentum (split impulses), so
+// fixing an overlap never launches a body.
+void RigidSolver::solvePositions(double dt) {
+  BodyRefs refs{pseudoVel_, pseudoOmega_, invInertia_, invMass_};
+  for (int it = 0; it < settings.positionIterations; ++it) {
+    for (Contact& c : contacts_) {
+      const double error = c.depth - c.slop;
+      if (error <= 0) continue;
+      const double target = settings.correction * error / dt;
+      const double vn = refs.relative(c).dot(c.normal);
+      const double next = std::max(0.0, c.lambdaP + c.massN * (target - vn));
+      refs.apply(c, (next - c.lambdaP) * c.normal);
+      c.lambdaP = next;
+    }
+  }
+}
+
+void RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
+                               std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                               std::span<const float> materialRadius) {
+  const std::uint32_t first = set.firstEntity;
+  for (const SlotPair& p : pairs) {
+    std::uint32_t f = p[0], k = p[1];
+    const bool fIsBody = s.owner[f] >= first, kIsBody = s.owner[k] >= first;
+    if (fIsBody == kIsBody) continue;  // body/body: contacts
+    if (fIsBody) std::swap(f, k);
+    const std::uint32_t b = s.owner[k] - first;
+    const BodyInfo& B = set.bodies[b];
+    const Vec3 xf(s.px[f], s.py[f], s.pz[f]), xk(s.px[k], s.py[k], s.pz[k]);
+    const Vec3 d = xf - xk;
+    const double reach = materialRadius[s.material[f]] + B.particleRadius;
+    const double r2 = d.squaredNorm();
+    if (!(r2 < reach * reach) || r2 == 0) continue;
+    const double r = std::sqrt(r2);
+    const Vec3 n = d / r;  // from the body towards the fluid particle
+    const Vec3 put = xf + n * (reach - r);
+    s.px[f] = static_cast<float>(put.x()); s.py[f] = static_cast<float>(put.y()); s.pz[f] = static_cast<float>(put.z());
+    // Inelastic: the fluid particle keeps the body's normal velocity at that point.
+    const Vec3 arm = xk - states[b].position;
+    const Vec3 vBody = vel_[b] + omega_[b].cross(arm);
+    const Vec3 vf(s.vx[f], s.vy[f], s.vz[f]);
+    const double vn = (vf - vBody).dot(n);
+    if (!(vn < 0)) continue;
+    const double imf = materialInverseMass[s.material[f]];
+    const double kb = B.dynamic ? inverseMassAlong(invMass_[b], invInertia_[b], arm, 0, kZero3, Vec3::Zero(), n) : 0.0;
+    const double j = -vn / (imf + kb);
+    const Vec3 vNew = vf + n * (j * imf);
+    s.vx[f] = static_cast<float>(vNew.x()); s.vy[f] = static_cast<float>(vNew.y()); s.vz[f] = static_cast<float>(vNew.z());
+    if (B.dynamic) {
+      const Vec3 impulse = -j * n;
+      vel_[b] += impulse * invMass_[b];
+      states[b].angularMomentum += arm.cross(impulse);
+      omega_[b] = invInertia_[b] * states[b].angularMomentum;
+    }
+  }
+}
+
+void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
+                       std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                       std::span<const float> materialRadius, const Walls* walls, const Vec3& gravity,
+                       double dt) {
+  if (set.empty()) return;
+  const std::size_t nb = set.bodies.size();
+  // Body particles may have been moved by the fluid integrator: put them back on their
+  // bodies before reading their forces' lever arms.
+  writeParticles(set, states, s);
+  gatherForces(set, states, s);
+  pos_.resize(nb); vel_.resize(nb); omega_.resize(nb); invInertia_.resize(nb); invMass_.resize(nb);
+  pseudoVel_.assign(nb, Vec3::Zero());
+  pseudoOmega_.assign(nb, Vec3::Zero());
+  for (std::size_t b = 0; b < nb; ++b) {
+    const BodyInfo& info = set.bodies[b];
+    BodyState& st = states[b];
+    pos_[b] = st.position;
+    if (!info.dynamic) {
+      vel_[b] = omega_[b] = Vec3::Zero();
+      invInertia_[b] = Mat3::Zero();
+      invMass_[b] = 0;
+      continue;
+    }
+    // Free motion: forces, torques and gravity for one substep.
+    st.velocity += (force_[b] * info.inverseMass + gravity) * dt;
+    st.angularMomentum += torque_[b] * dt;
+    invInertia_[b] = worldInverseInertia(info, st);
+    invMass_[b] = info.inverseMass;
+    vel_[b] = st.velocity;
+    omega_[b] = invInertia_[b] * st.angularMomentum;
+  }
+  collectContacts(set, s, pairs, walls);
+  reduceContacts();
+  prepareContacts(dt, gravity);
+  solveVelocities();
+  solvePositions(dt);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const BodyInfo& info = set.bodies[b];
+    if (!info.dynamic) continue;
+    BodyState& st = states[b];
+    st.velocity = vel_[b];
+    // L from the solved angular velocity, with the tensor of this substep's orientation.
+    st.angularMomentum = invInertia_[b].isZero() ? Vec3::Zero().eval() : Vec3(invInertia_[b].inverse() * omega_[b]);
+    integratePose(info, st, vel_[b] + pseudoVel_[b], omega_[b] + pseudoOmega_[b], dt);
+  }
+  // New poses: body particles to their places, then fluid kept outside the bodies.
+  writeParticles(set, states, s);
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (!set.bodies[b].dynamic) continue;
+    vel_[b] = states[b].velocity;
+    invInertia_[b] = worldInverseInertia(set.bodies[b], states[b]);
+    omega_[b] = invInertia_[b] * states[b].angularMomentum;
+  }
+  pushFluidOut(set, states, s, pairs, materialInverseMass, materialRadius);
+  for (std::size_t b = 0; b < nb; ++b)
+    if (set.bodies[b].dynamic) states[b].velocity = vel_[b];
+  writeParticles(set, states, s);
+}
+
+}  // namespace softsub::rigid

@@ -1,0 +1,102 @@
+#pragma once
+/// The rigid-body stages of a substep (docs/architecture.md, "Rigid bodies"): forces of
+/// the body particles → force and torque on each body; velocities; contacts between
+/// bodies (overlapping particles of different bodies) and with the container walls,
+/// resolved by impulses; interpenetration removed (the seed's stage 5); poses advanced;
+/// fluid particles kept out of the bodies; body particles written back into the store.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/math.h"
+#include "core/particle_store.h"
+#include "rigid/body.h"
+
+namespace softsub::rigid {
+
+/// Axis-aligned container walls: planes at lo and hi on x and z, a floor at lo.y, a lid
+/// at hi.y when closed.
+struct Walls {
+  std::array<double, 3> lo{0, 0, 0};
+  std::array<double, 3> hi{0, 0, 0};
+  bool closed = false;
+  double restitution = 0.5;  ///< the environment's NormalAttenuation
+  double friction = 0.1;     ///< the environment's TangentAttenuation
+};
+
+/// Tuning of the contact solver (defaults are what scenes get).
+struct ContactSettings {
+  int velocityIterations = 20;   ///< sequential-impulse sweeps over the contacts
+  int positionIterations = 6;    ///< sweeps of the interpenetration fix
+  double correction = 0.3;       ///< fraction of the overlap removed per substep
+  double slop = 0.02;            ///< overlap left alone, as a fraction of the particle radius
+};
+
+/// A contact between two bodies (b = -1: a wall) at one pair of touching particles.
+struct Contact {
+  std::int32_t a = 0, b = -1;  ///< body indices
+  std::int32_t wall = -1;      ///< b = -1: the plane, 2 * axis + (0 low side, 1 high side)
+  Vec3 normal{0, 1, 0};        ///< unit, from b towards a: the impulse on a is +lambda * normal
+  Vec3 ra{0, 0, 0}, rb{0, 0, 0};  ///< contact point relative to each centre of mass
+  double depth = 0;            ///< overlap of the two particles (or particle and wall)
+  double slop = 0;             ///< overlap the interpenetration fix leaves alone
+  double restitution = 0, friction = 0;
+  // Solver state.
+  Vec3 t1{1, 0, 0}, t2{0, 0, 1};
+  double massN = 0, massT1 = 0, massT2 = 0;
+  double targetN = 0, targetT1 = 0;
+  double lambdaN = 0, lambdaT1 = 0, lambdaT2 = 0, lambdaP = 0;
+};
+
+/// Slots of a pair of particles of which at least one belongs to a body, of two
+/// different owners.
+using SlotPair = std::array<std::uint32_t, 2>;
+
+/// Steps every body; owns its work buffers (no allocation once warmed up).
+class RigidSolver {
+ public:
+  /// Slots of every body particle in `store` (call after each reorder of the store).
+  void findBodySlots(const BodySet& set, const ParticleStore& store);
+  [[nodiscard]] std::span<const std::uint32_t> bodySlots() const { return bodySlots_; }
+
+  /// Writes every body particle's position and velocity from its body's state.
+  void writeParticles(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& store);
+
+  /// One substep of length dt for every body. `store.f` must hold the forces at the
+  /// bodies' current poses; `pairs` lists (at least) every pair of particles within
+  /// contact distance that involves a body; `fluidInverseMass` and `fluidRadius` give,
+  /// per material, the mass and radius of fluid particles. Fluid particles found inside
+  /// a body are put back on its surface and lose their approaching velocity (the body
+  /// takes the opposite impulse).
+  void step(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
+            std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+            std::span<const float> materialRadius, const Walls* walls, const Vec3& gravity, double dt);
+
+  /// The contacts of the last step (tests, diagnostics).
+  [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
+
+  ContactSettings settings;
+
+ private:
+  void gatherForces(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store);
+  void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
+                       const Walls* walls);
+  void reduceContacts();
+  void prepareContacts(double dt, const Vec3& gravity);
+  void solveVelocities();
+  void solvePositions(double dt);
+  void pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
+                    std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                    std::span<const float> materialRadius);
+
+  std::vector<std::uint32_t> bodySlots_;
+  std::vector<Contact> contacts_;
+  // Per body, during a step.
+  std::vector<Vec3> force_, torque_;
+  std::vector<Vec3> pos_, vel_, omega_, pseudoVel_, pseudoOmega_;
+  std::vector<Mat3> rot_, invInertia_;
+  std::vector<double> invMass_;
+};
+
+}  // namespace softsub::rigid

@@ -1,0 +1,222 @@
+#include "scene/bodies.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+
+#include "core/error.h"
+#include "geometry/fill.h"
+#include "geometry/mass_properties.h"
+#include "geometry/mesh_loader.h"
+#include "geometry/primitives.h"
+#include "rigid/body.h"
+
+namespace softsub::scene {
+
+namespace {
+
+constexpr int kSegments = 32;  // primitive meshes: fine enough to fill and to look round
+
+// Primitive extents (unscaled): Size, or fitted to the mesh's bounding box.
+std::vector<double> primitiveSize(const ObjectDesc& o, const Aabb& box) {
+  if (!o.size.empty()) return o.size;
+  const double ex = box.hi[0] - box.lo[0], ey = box.hi[1] - box.lo[1], ez = box.hi[2] - box.lo[2];
+  switch (o.shape) {
+    case ObjectShape::Sphere: return {0.5 * std::max({ex, ey, ez})};
+    case ObjectShape::Cone:
+    case ObjectShape::Cylinder: return {0.5 * std::max(ex, ez), ey};
+    case ObjectShape::Box: return {ex, ey, ez};
+    case ObjectShape::Mesh: break;
+  }
+  return {};
+}
+
+struct Mass {
+  Vec3 center{0, 0, 0};  // centre of mass in scaled geometry coordinates
+  Mat3 inertia = Mat3::Identity();
+};
+
+Mass massOf(const ObjectDesc& o, const geometry::TriangleMesh& scaled) {
+  Mass m;
+  const Aabb box = scaled.bounds();
+  const Vec3 mid(0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2]));
+  if (o.shape == ObjectShape::Mesh) {
+    if (!o.isDynamic) {  // a static body needs no inertia; its mesh may be open
+      m.center = mid;
+      return m;
+    }
+    const geometry::MassProperties p = geometry::meshMassProperties(scaled, o.mass, o.geometry);
+    m.center = p.centerOfMass;
+    m.inertia = p.inertia;
+    return m;
+  }
+  // A primitive stands in for the inertia: its Size scaled, or fitted to the scaled box.
+  std::vector<double> size = primitiveSize(o, box);
+  if (!o.size.empty())
+    for (double& v : size) v *= o.uniformScale;
+  const bool fromMesh = !o.geometry.empty();
+  m.center = fromMesh ? mid : Vec3::Zero();
+  switch (o.shape) {
+    case ObjectShape::Sphere: m.inertia = geometry::sphereInertia(o.mass, size[0]); break;
+    case ObjectShape::Box: m.inertia = geometry::cuboidInertia(o.mass, size[0], size[1], size[2]); break;
+    case ObjectShape::Cylinder: m.inertia = geometry::cylinderInertia(o.mass, size[0], size[1]); break;
+    case ObjectShape::Cone:
+      m.inertia = geometry::coneInertia(o.mass, size[0], size[1]);
+      if (fromMesh) m.center.y() = box.lo[1] + 0.25 * size[1];  // a quarter up from the base
+      break;
+    case ObjectShape::Mesh: break;
+  }
+  return m;
+}
+
+geometry::TriangleMesh scaledMesh(const geometry::TriangleMesh& mesh, double s) {
+  geometry::TriangleMesh out = mesh;
+  for (Vec3& v : out.vertices) v *= s;
+  return out;
+}
+
+bool isClosed(const geometry::TriangleMesh& mesh) {
+  try {
+    static_cast<void>(geometry::meshMassProperties(mesh, 1.0));
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// The body's particles, in scaled geometry coordinates: the outer two layers of a volume
+// fill of a closed mesh, or a surface fill of an open one; at least one particle.
+std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spacing, const Vec3& center) {
+  const bool closed = isClosed(scaled);
+  const geometry::MeshFillResult r = geometry::fillMesh(
+      scaled, {.spacing = spacing, .surfaceOnly = !closed, .maxParticles = geometry::meshFillBound(scaled, spacing)});
+  std::vector<Vec3> points = closed ? geometry::latticeShell(r.points, spacing, 2) : r.points;
+  if (points.empty()) points.push_back(center);  // smaller than one particle
+  return points;
+}
+
+const PairDesc* findPair(const InteractionsDesc& in, const std::string& a, const std::string& b) {
+  for (const PairDesc& p : in.pairs)
+    if ((p.a == a && p.b == b) || (p.a == b && p.b == a)) return &p;
+  return nullptr;
+}
+
+}  // namespace
+
+geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDir) {
+  if (!o.geometry.empty()) return geometry::loadMesh(std::filesystem::path(baseDir) / o.geometry);
+  const std::vector<double>& s = o.size;
+  switch (o.shape) {
+    case ObjectShape::Sphere: return geometry::sphereMesh(Vec3::Zero(), s.at(0), kSegments / 2, kSegments);
+    case ObjectShape::Box: {
+      const Vec3 h(0.5 * s.at(0), 0.5 * s.at(1), 0.5 * s.at(2));
+      return geometry::boxMesh(-h, h);
+    }
+    case ObjectShape::Cylinder: return geometry::frustumMesh(s.at(0), -0.5 * s.at(1), s.at(0), 0.5 * s.at(1), kSegments);
+    case ObjectShape::Cone: return geometry::frustumMesh(s.at(0), -0.25 * s.at(1), 0, 0.75 * s.at(1), kSegments);
+    case ObjectShape::Mesh: break;
+  }
+  throw InputError({"", o.line, "Object"}, "a mesh object needs a Geometry file",
+                   "Geometry, or a primitive Shape with Size");
+}
+
+double objectParticleSize(const ObjectDesc& o, const geometry::TriangleMesh& mesh) {
+  if (o.particleSize > 0) return o.particleSize;
+  const Aabb box = mesh.bounds();
+  const double extent = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+  return extent * o.uniformScale / 20.0;
+}
+
+void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
+               std::vector<geometry::TriangleMesh>& meshes) {
+  if (desc.objects.empty()) return;
+  rigid::BodySet& set = m.bodies;
+  const std::size_t nf = desc.fluids.size();
+  set.firstEntity = static_cast<std::uint32_t>(nf);
+  set.firstId = static_cast<std::uint32_t>(state.particles.size());
+
+  // Material rows: objects with the same fluid interactions share one row.
+  std::vector<std::vector<const PairDesc*>> rowKeys;
+  std::vector<std::size_t> rowOf(desc.objects.size());
+  for (std::size_t o = 0; o < desc.objects.size(); ++o) {
+    std::vector<const PairDesc*> key(nf);
+    for (std::size_t f = 0; f < nf; ++f) key[f] = findPair(desc.interactions, desc.fluids[f].name, desc.objects[o].name);
+    std::size_t row = 0;
+    while (row < rowKeys.size()) {
+      bool same = true;
+      for (std::size_t f = 0; f < nf && same; ++f)
+        same = (rowKeys[row][f] == nullptr) == (key[f] == nullptr) &&
+               (key[f] == nullptr || rowKeys[row][f]->interaction == key[f]->interaction);
+      if (same) break;
+      ++row;
+    }
+    if (row == rowKeys.size()) rowKeys.push_back(std::move(key));
+    rowOf[o] = row;
+  }
+  const std::size_t rows = nf + rowKeys.size();
+  forces::InteractionTable table(rows);
+  for (std::size_t a = 0; a < nf; ++a)
+    for (std::size_t b = a; b < nf; ++b) table.set(a, b, m.table.interaction(a, b));
+  for (std::size_t r = 0; r < rowKeys.size(); ++r)
+    for (std::size_t f = 0; f < nf; ++f) {
+      const InteractionDesc& d = rowKeys[r][f] ? rowKeys[r][f]->interaction : desc.interactions.fluidObject;
+      table.set(nf + r, f, {d.function, d.damping, d.relativeVelocity});
+    }
+  m.table = std::move(table);
+  for (std::size_t r = 0; r < rowKeys.size(); ++r) m.materials.push_back({0.0f, 0.0f, true});
+
+  ParticleStore& store = state.particles;
+  for (std::size_t o = 0; o < desc.objects.size(); ++o) {
+    const ObjectDesc& od = desc.objects[o];
+    geometry::TriangleMesh mesh = objectMesh(od, desc.baseDir);
+    const geometry::TriangleMesh scaled = scaledMesh(mesh, od.uniformScale);
+    meshes.push_back(std::move(mesh));
+    const double spacing = objectParticleSize(od, meshes.back());
+    const Mass mass = massOf(od, scaled);
+    const std::vector<Vec3> points = bodyParticles(scaled, spacing, mass.center);
+
+    rigid::BodyInfo info;
+    info.name = od.name;
+    info.dynamic = od.isDynamic;
+    info.mass = od.mass;
+    info.inverseMass = od.isDynamic ? 1.0 / od.mass : 0.0;
+    info.inverseInertia = od.isDynamic ? Mat3(mass.inertia.inverse()) : Mat3::Zero();
+    info.restitution = od.normalAttenuation;
+    info.friction = od.tangentAttenuation;
+    info.particleRadius = 0.5 * spacing;
+    info.firstId = static_cast<std::uint32_t>(store.size());
+    info.count = static_cast<std::uint32_t>(points.size());
+    info.originInBody = -mass.center;
+    info.uniformScale = od.uniformScale;
+    info.geometryFile = od.name + ".obj";
+
+    const std::size_t row = nf + rowOf[o];
+    m.materials[row].radius = std::max(m.materials[row].radius, static_cast<float>(info.particleRadius));
+    const auto material = static_cast<std::uint16_t>(row);
+    const auto owner = static_cast<std::uint32_t>(nf + o);
+    store.reserve(store.size() + points.size());
+    for (const Vec3& p : points) {
+      const Vec3 off = p - mass.center;
+      set.ox.push_back(static_cast<float>(off.x()));
+      set.oy.push_back(static_cast<float>(off.y()));
+      set.oz.push_back(static_cast<float>(off.z()));
+      store.add(0, 0, 0, 0, 0, 0, material, owner);  // placed from the body's state
+    }
+
+    rigid::BodyState st;
+    st.orientation = rigid::rotationFromEulerDegrees(od.initialRotation);
+    st.position = od.initialPosition + st.orientation * mass.center;
+    if (od.isDynamic) {
+      st.velocity = od.initialLinearVelocity;
+      const Vec3 omega = od.initialAngularVelocity * (std::numbers::pi / 180.0);
+      const Mat3 r = st.orientation.toRotationMatrix();
+      st.angularMomentum = r * mass.inertia * r.transpose() * omega;
+    }
+    set.bodies.push_back(std::move(info));
+    state.bodies.push_back(st);
+  }
+}
+
+}  // namespace softsub::scene

@@ -1,0 +1,29 @@
+#pragma once
+/// `<Object>` → rigid bodies: geometry (loaded or primitive), mass properties, particles
+/// and initial state. Used by compile() and, for the particle bound, by the reader.
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+#include "scene/scene_desc.h"
+#include "solver/model.h"
+
+namespace softsub::scene {
+
+/// The object's surface in its geometry's own coordinates, before UniformScale: the mesh
+/// file (loaded from baseDir / Geometry), or the primitive of Shape and Size centred on
+/// its centre of mass (a cone's base at y = -height/4). This is the mesh written beside
+/// the frames, which the `.sim` transform places.
+[[nodiscard]] geometry::TriangleMesh objectMesh(const ObjectDesc& object, const std::string& baseDir);
+
+/// The particle diameter of an object: ParticleSize, or 1/20 of the largest extent of
+/// its scaled mesh.
+[[nodiscard]] double objectParticleSize(const ObjectDesc& object, const geometry::TriangleMesh& mesh);
+
+/// Appends every object of `desc` as a rigid body to the model (after the fluids:
+/// materials, interaction rows with every fluid) and its particles and state to `state`.
+/// `meshes` receives each object's objectMesh, in scene order.
+void addBodies(const SceneDesc& desc, solver::Model& model, solver::State& state,
+               std::vector<geometry::TriangleMesh>& meshes);
+
+}  // namespace softsub::scene
