@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "geometry/fill.h"
+#include "geometry/mass_properties.h"
 #include "geometry/mesh_loader.h"
 #include "scene/fill.h"
 #include "scene/schema.h"
@@ -25,8 +26,6 @@ namespace softsub::scene {
 
 namespace {
 
-constexpr std::string_view kRigidRefused =
-    "rigid objects are not supported yet (they arrive with rigid bodies, issue #3)";
 constexpr std::string_view kPathAllowed = "a path inside the scene's folder, e.g. honeyGeo/blob.obj";
 constexpr std::string_view kOneFunction =
     "exactly one of Linear, LennardJones, LennardJonesForce, Curve";
@@ -37,6 +36,24 @@ bool isNameChar(char c) {
 }
 
 bool validName(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), isNameChar); }
+
+// An object's name becomes part of file names: the rule of cache::checkFileNamePart (not
+// empty, no '/', '\\' or control character), checked here so a bad name is an error at
+// its line.
+constexpr std::string_view kObjectNameAllowed =
+    "a non-empty name without '/', '\\' or control characters";
+bool usableObjectName(std::string_view s) {
+  return !s.empty() && std::none_of(s.begin(), s.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return c == '/' || c == '\\' || u < 0x20 || u == 0x7f;
+  });
+}
+
+// The largest extent of a box, 0 for an empty one.
+double largestExtent(const Aabb& box) {
+  if (box.empty()) return 0;
+  return std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+}
 
 template <class S>
 const FieldInfo& infoOf(std::string_view tag) {
@@ -302,10 +319,10 @@ class SceneReader {
       readFields(n, p, scene_.environment.emplace());
     });
     c.element("Fluid", [&](pugi::xml_node n, const std::string&) { readFluid(n); });
+    c.element("Object", [&](pugi::xml_node n, const std::string&) { readObject(n); });
     c.element("Interactions", [&](pugi::xml_node n, const std::string& p) {
       readInteractions(n, p);
     });
-    c.refuse("Object", std::string(kRigidRefused));
     for ([[maybe_unused]] const pugi::xml_node f : root.children("Fluid")) ++fluidElements_;
     c.run();
     checkPairs();
@@ -319,6 +336,12 @@ class SceneReader {
     int aLine = 0;
     int bLine = 0;
     std::string path;
+  };
+
+  // Who holds a name: fluids and objects share one namespace (a Pair names either).
+  struct NameOwner {
+    bool object = false;
+    int line = 0;  // line of its <Name>, or of the <Object> for a default name
   };
 
   pugi::xml_node findRoot(const pugi::xml_document& doc) const {
@@ -397,11 +420,7 @@ class SceneReader {
                fmt::format("{} is not a valid fluid name", quote(fluid.name)),
                allowedText(infoOf<FluidDesc>("Name")));
     }
-    if (const auto [it, fresh] = nameLines_.emplace(fluid.name, c.lineOf("Name")); !fresh) {
-      cx_.fail(c.lineOf("Name"), label + "/Name",
-               fmt::format("the fluid name '{}' is already used (line {})", fluid.name, it->second),
-               "a name no other fluid has");
-    }
+    claimName(fluid.name, false, c.lineOf("Name"), label + "/Name", "fluid name");
     checkOrder(c, fluid.params.minimumForce, fluid.params.maximumForce, "MinimumForce",
                "MaximumForce");
     if (const Value* n = c.derived("NumberOfParticles")) {
@@ -469,49 +488,189 @@ class SceneReader {
   // folder once symbolic links are resolved, and a mesh that loads. Its voxel bound
   // counts toward the particle cap (nothing is generated here).
   void checkMeshFill(const Children& c, const FillDesc& fill, const std::string& path) {
-    namespace fs = std::filesystem;
     if (c.lineOf("Spacing") == 0) {
       cx_.fail(fill.line, path, "missing required <Spacing>",
                "a mesh fill gives its lattice step: <Spacing>, > 0");
     }
-    const int line = c.lineOf("Geometry");
-    const std::string element = path + "/Geometry";
+    const geometry::TriangleMesh mesh =
+        loadGeometry(fill.geometry, c.lineOf("Geometry"), path + "/Geometry");
+    meshBound_ = saturatingAdd(meshBound_, geometry::meshFillBound(mesh, fill.spacing));
+  }
+
+  // The mesh a <Geometry> (of a mesh fill or an object) names: a relative path that stays
+  // inside the scene's folder once symbolic links are resolved, and a file that loads.
+  // Every problem is an error at the <Geometry> line (element).
+  [[nodiscard]] geometry::TriangleMesh loadGeometry(const std::string& file, int line,
+                                                    const std::string& element) const {
+    namespace fs = std::filesystem;
     const auto fail = [&](const std::string& problem) {
       cx_.fail(line, element, problem, std::string(kPathAllowed));
     };
-    const fs::path given(fill.geometry);
-    if (fill.geometry.empty()) fail("the mesh path is empty");
+    const fs::path given(file);
+    if (file.empty()) fail("the mesh path is empty");
     if (given.is_absolute() || given.has_root_name() || given.has_root_directory()) {
-      fail(fmt::format("{} is an absolute path", quote(fill.geometry)));
+      fail(fmt::format("{} is an absolute path", quote(file)));
     }
     const fs::path normal = given.lexically_normal();
     if (!normal.empty() && *normal.begin() == "..") {
-      fail(fmt::format("{} leaves the scene's folder", quote(fill.geometry)));
+      fail(fmt::format("{} leaves the scene's folder", quote(file)));
     }
     if (normal.empty() || normal == ".") {
-      fail(fmt::format("{} names the scene's folder itself, not a mesh file", quote(fill.geometry)));
+      fail(fmt::format("{} names the scene's folder itself, not a mesh file", quote(file)));
     }
     std::error_code ec;
     const fs::path base = fs::weakly_canonical(cx_.baseDir, ec);
     fs::path target;
     if (!ec) target = fs::weakly_canonical(base / normal, ec);
-    if (ec) fail(fmt::format("cannot resolve {}: {}", quote(fill.geometry), ec.message()));
+    if (ec) fail(fmt::format("cannot resolve {}: {}", quote(file), ec.message()));
     const fs::path rel = target.lexically_relative(base);
     if (rel.empty() || *rel.begin() == ".." || rel == ".") {
       fail(fmt::format("{} resolves to '{}', outside the scene's folder (through a symbolic link)",
-                       quote(fill.geometry), target.string()));
+                       quote(file), target.string()));
     }
     geometry::TriangleMesh mesh;
     try {
       mesh = geometry::loadMesh(target);
     } catch (const InputError& e) {
-      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(fill.geometry), e.problem()),
+      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.problem()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
     } catch (const IoError& e) {
-      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(fill.geometry), e.what()),
+      cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.what()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
     }
-    meshBound_ = saturatingAdd(meshBound_, geometry::meshFillBound(mesh, fill.spacing));
+    return mesh;
+  }
+
+  // Records name as taken by a fluid or an object; a name already taken (by either) is an
+  // error at line, naming element. what: "fluid name", "object name", "default object name".
+  void claimName(const std::string& name, bool object, int line, const std::string& element,
+                 std::string_view what) {
+    const auto [it, fresh] = names_.emplace(name, NameOwner{object, line});
+    if (fresh) return;
+    const bool sameKind = it->second.object == object;
+    cx_.fail(line, element,
+             fmt::format("the {} '{}' is already used{} (line {})", what, name,
+                         sameKind ? "" : (it->second.object ? " by an object" : " by a fluid"),
+                         it->second.line),
+             what == "default object name"
+                 ? "a name no other fluid or object has: give this object its own <Name>"
+                 : "a name no other fluid or object has");
+  }
+
+  // An <Object>: its fields, a name (default object<N>), and either Geometry (a mesh that
+  // loads; closed when it is a dynamic mesh-shaped body) or a primitive Shape with Size.
+  // Its particle bound counts toward the particle cap (nothing is generated here).
+  void readObject(pugi::xml_node node) {
+    ObjectDesc object;
+    object.line = cx_.lineOf(node);
+    const std::size_t index = scene_.objects.size() + 1;
+    const std::string nameText = childText(node, "Name");
+    const std::string label = usableObjectName(nameText) && nameText.size() <= 40
+                                  ? fmt::format("Object '{}'", nameText)
+                                  : fmt::format("Object[{}]", index);
+    Children c(cx_, node, label);
+    c.fields(fieldsOf<ObjectDesc>(), object);
+    c.run();
+
+    if (c.lineOf("Name") == 0) {
+      object.name = fmt::format("object{}", index);
+      claimName(object.name, true, object.line, label, "default object name");
+    } else {
+      if (!usableObjectName(object.name)) {
+        cx_.fail(c.lineOf("Name"), label + "/Name",
+                 fmt::format("{} is not a valid object name: it becomes part of file names",
+                             quote(object.name)),
+                 std::string(kObjectNameAllowed));
+      }
+      claimName(object.name, true, c.lineOf("Name"), label + "/Name", "object name");
+    }
+
+    const bool hasGeometry = c.lineOf("Geometry") > 0;
+    const bool hasShape = c.lineOf("Shape") > 0;
+    const bool hasSize = c.lineOf("Size") > 0;
+    const std::string shapeName(kObjectShapeNames[static_cast<int>(object.shape)]);
+    constexpr std::string_view kBodyAllowed =
+        "<Geometry> (a mesh file), or <Shape> sphere, cone, box or cylinder with <Size>";
+    if (!hasGeometry && !hasShape) {
+      cx_.fail(object.line, label, "the object has neither <Geometry> nor <Shape>",
+               std::string(kBodyAllowed));
+    }
+    if (object.shape == ObjectShape::Mesh && !hasGeometry) {
+      cx_.fail(c.lineOf("Shape"), label + "/Shape", "Shape mesh needs a <Geometry> mesh file",
+               std::string(kBodyAllowed));
+    }
+    if (object.shape == ObjectShape::Mesh && hasSize) {
+      cx_.fail(c.lineOf("Size"), label + "/Size",
+               "a mesh object takes its size from its mesh: there is nothing to size",
+               "Size only with Shape sphere, cone, box or cylinder; scale a mesh with "
+               "UniformScale");
+    }
+    if (object.shape != ObjectShape::Mesh) {
+      const std::size_t want = objectSizeCount(object.shape);
+      const std::string sizeAllowed =
+          fmt::format("{} {} > 0 for a {}: {}", want, want == 1 ? "number" : "numbers",
+                      shapeName, objectSizeWords(object.shape));
+      if (!hasSize && !hasGeometry) {
+        cx_.fail(object.line, label, fmt::format("missing required <Size> for Shape {}", shapeName),
+                 sizeAllowed);
+      }
+      if (hasSize && object.size.size() != want) {
+        cx_.fail(c.lineOf("Size"), label + "/Size",
+                 fmt::format("Size has {} {} but a {} takes {} ({})", object.size.size(),
+                             object.size.size() == 1 ? "number" : "numbers", shapeName, want,
+                             objectSizeWords(object.shape)),
+                 sizeAllowed);
+      }
+    }
+
+    // The body's extent, for the automatic particle size and the particle bound: the
+    // mesh when there is one, else the primitive's bounding box; both scaled.
+    geometry::TriangleMesh body;
+    if (hasGeometry) {
+      const int line = c.lineOf("Geometry");
+      const std::string element = label + "/Geometry";
+      body = loadGeometry(object.geometry, line, element);
+      if (object.shape == ObjectShape::Mesh && object.isDynamic) {
+        try {
+          (void)geometry::meshMassProperties(body, object.mass, object.geometry);
+        } catch (const InputError& e) {
+          cx_.fail(line, element,
+                   fmt::format("the mesh {} cannot be a dynamic body: {}", quote(object.geometry),
+                               e.problem()),
+                   fmt::format("{}; or <IsDynamic>false</IsDynamic>, or a primitive <Shape>",
+                               e.allowed().empty() ? std::string("a closed triangle mesh")
+                                                   : e.allowed()));
+        }
+      }
+    } else {
+      body.vertices = primitiveCorners(object.shape, object.size);
+    }
+    for (Vec3& v : body.vertices) v *= object.uniformScale;
+    const double extent = largestExtent(body.bounds());
+    if (!(extent <= kMaxReal)) {
+      cx_.fail(c.lineOf("UniformScale") > 0 ? c.lineOf("UniformScale") : object.line,
+               c.lineOf("UniformScale") > 0 ? label + "/UniformScale" : label,
+               fmt::format("the scaled object is {:g} units across, too large for single precision",
+                           extent),
+               "an object at most 3.4e38 units across after UniformScale");
+    }
+    const double spacing = object.particleSize > 0 ? object.particleSize : extent / 20;
+    objectBounds_.push_back(geometry::meshFillBound(body, spacing));
+    objectLabels_.push_back(label);
+    scene_.objects.push_back(std::move(object));
+  }
+
+  // The corners of a primitive's bounding box (axis along y for cone and cylinder).
+  static std::vector<Vec3> primitiveCorners(ObjectShape shape, const std::vector<double>& size) {
+    Vec3 half(0, 0, 0);
+    switch (shape) {
+      case ObjectShape::Mesh: return {};
+      case ObjectShape::Sphere: half = Vec3(size[0], size[0], size[0]); break;
+      case ObjectShape::Cone:
+      case ObjectShape::Cylinder: half = Vec3(size[0], size[1] / 2, size[0]); break;
+      case ObjectShape::Box: half = Vec3(size[0] / 2, size[1] / 2, size[2] / 2); break;
+    }
+    return {-half, half};
   }
 
   void readInteractions(pugi::xml_node node, const std::string& path) {
@@ -523,8 +682,15 @@ class SceneReader {
       runWithFunction(fc, d);
       scene_.interactions.fluidFluid = std::move(d);
     });
+    c.element("FluidObject", [&](pugi::xml_node n, const std::string& p) {
+      // Starts from the default: a missing RelativeVelocity keeps FluidObject's own.
+      InteractionDesc d = InteractionsDesc{}.fluidObject;
+      Children fc(cx_, n, p);
+      fc.fields(fieldsOf<InteractionDesc>(), d);
+      runWithFunction(fc, d);
+      scene_.interactions.fluidObject = std::move(d);
+    });
     c.element("Pair", [&](pugi::xml_node n, const std::string&) { readPair(n, path); });
-    c.refuse("FluidObject", std::string(kRigidRefused));
     c.run();
   }
 
@@ -533,8 +699,9 @@ class SceneReader {
     pair.line = cx_.lineOf(node);
     const std::string a = childText(node, "A");
     const std::string b = childText(node, "B");
+    const auto labelled = [](const std::string& s) { return usableObjectName(s) && s.size() <= 40; };
     const std::string path =
-        validName(a) && validName(b)
+        labelled(a) && labelled(b)
             ? fmt::format("{}/Pair '{}','{}'", parentPath, a, b)
             : fmt::format("{}/Pair[{}]", parentPath, scene_.interactions.pairs.size() + 1);
     Children c(cx_, node, path);
@@ -545,7 +712,8 @@ class SceneReader {
     scene_.interactions.pairs.push_back(std::move(pair));
   }
 
-  // Runs c (a FluidFluid or Pair) with the function elements added; exactly one is needed.
+  // Runs c (a FluidFluid, FluidObject or Pair) with the function elements added; exactly
+  // one is needed.
   void runWithFunction(Children& c, InteractionDesc& d) {
     std::string first;
     addFunction<forces::Linear>(c, "Linear", d, first);
@@ -601,34 +769,60 @@ class SceneReader {
 
   void checkPairs() const {
     std::map<std::pair<std::string, std::string>, int> seen;
-    std::string names;
-    for (const auto& f : scene_.fluids) names += (names.empty() ? "" : ", ") + f.name;
-    const std::string allowed =
-        names.empty() ? std::string("the Name of a fluid (the scene has none)")
-                      : fmt::format("the Name of a fluid: {}", names);
+    std::string fluids;
+    for (const auto& f : scene_.fluids) fluids += (fluids.empty() ? "" : ", ") + f.name;
+    std::string objects;
+    for (const auto& o : scene_.objects) objects += (objects.empty() ? "" : ", ") + o.name;
+    std::string allowed = "the Name of a fluid or an object";
+    if (fluids.empty() && objects.empty()) {
+      allowed += " (the scene has none)";
+    } else {
+      allowed += ":";
+      if (!fluids.empty()) allowed += " fluids " + fluids;
+      if (!objects.empty()) allowed += (fluids.empty() ? " objects " : "; objects ") + objects;
+    }
+    const auto isObject = [&](const std::string& name) {
+      const auto it = names_.find(name);
+      return it != names_.end() && it->second.object;
+    };
     for (std::size_t i = 0; i < scene_.interactions.pairs.size(); ++i) {
       const PairDesc& p = scene_.interactions.pairs[i];
       const PairSource& src = pairSources_[i];
-      if (!nameLines_.contains(p.a)) {
-        cx_.fail(src.aLine, src.path + "/A", fmt::format("no fluid is named '{}'", p.a), allowed);
+      if (!names_.contains(p.a)) {
+        cx_.fail(src.aLine, src.path + "/A", fmt::format("no fluid or object is named '{}'", p.a),
+                 allowed);
       }
-      if (!nameLines_.contains(p.b)) {
-        cx_.fail(src.bLine, src.path + "/B", fmt::format("no fluid is named '{}'", p.b), allowed);
+      if (!names_.contains(p.b)) {
+        cx_.fail(src.bLine, src.path + "/B", fmt::format("no fluid or object is named '{}'", p.b),
+                 allowed);
+      }
+      if (isObject(p.a) && isObject(p.b)) {
+        cx_.fail(p.line, src.path,
+                 fmt::format("'{}' and '{}' are both objects: objects collide by impulses "
+                             "(NormalAttenuation, TangentAttenuation), not by a function",
+                             p.a, p.b),
+                 "a Pair of two fluids, or of a fluid and an object");
       }
       const auto key = std::minmax(p.a, p.b);
       if (const auto [it, fresh] = seen.emplace(std::pair(key.first, key.second), p.line); !fresh) {
         cx_.fail(p.line, src.path,
                  fmt::format("the pair '{}','{}' is given twice (first at line {})", p.a, p.b,
                              it->second),
-                 "one <Pair> for two fluids, in either order");
+                 "one <Pair> for the same two names, in either order");
       }
     }
   }
 
-  // The cap on particles, counted from positions and fill formulas: nothing generated.
+  // The cap on particles, counted from positions, fill formulas and voxel bounds (mesh
+  // fills, objects): nothing generated. Fluids first, then objects; the element where the
+  // running total passes the cap is named.
   void checkParticleCap() const {
     const std::uint64_t cap = cx_.options.maxParticles;
     std::uint64_t total = 0;
+    const auto count = [&] {
+      return total == UINT64_MAX ? std::string("more than 18446744073709551614")
+                                 : std::to_string(total);
+    };
     std::size_t crossing = scene_.fluids.size();
     for (std::size_t i = 0; i < scene_.fluids.size(); ++i) {
       const FluidDesc& f = scene_.fluids[i];
@@ -637,20 +831,32 @@ class SceneReader {
       total = saturatingAdd(total, meshBounds_[i]);  // mesh fills: their voxel grids
       if (total > cap && crossing == scene_.fluids.size()) crossing = i;
     }
-    if (crossing == scene_.fluids.size()) return;
-    const std::string count =
-        total == UINT64_MAX ? std::string("more than 18446744073709551614") : std::to_string(total);
-    cx_.fail(scene_.fluids[crossing].line, labels_[crossing],
-             fmt::format("the scene makes {} particles (explicit positions plus fills), more than "
-                         "the cap of {}",
-                         count, cap),
-             fmt::format("at most {} particles in all", cap));
+    if (crossing < scene_.fluids.size()) {
+      cx_.fail(scene_.fluids[crossing].line, labels_[crossing],
+               fmt::format("the scene makes {} particles (explicit positions plus fills), more "
+                           "than the cap of {}",
+                           count(), cap),
+               fmt::format("at most {} particles in all", cap));
+    }
+    for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
+      total = saturatingAdd(total, objectBounds_[i]);
+      if (total <= cap) continue;
+      cx_.fail(scene_.objects[i].line, objectLabels_[i],
+               fmt::format("the fluids and the objects up to this one may make {} particles "
+                           "(objects filled at their ParticleSize), more than the cap of {}",
+                           count(), cap),
+               fmt::format("at most {} particles in all: a larger ParticleSize, or fewer or "
+                           "smaller objects",
+                           cap));
+    }
   }
 
   const Context& cx_;
   SceneDesc scene_;
-  std::map<std::string, int> nameLines_;  // fluid name -> line of its <Name>
+  std::map<std::string, NameOwner> names_;  // fluid and object names
   std::vector<std::string> labels_;       // per fluid: its element path
+  std::vector<std::string> objectLabels_;    // per object: its element path
+  std::vector<std::uint64_t> objectBounds_;  // per object: voxel bound of its fill
   std::vector<PairSource> pairSources_;   // per pair: lines of A and B, its path
   std::size_t fluidElements_ = 0;         // <Fluid> elements of the file, for the cap's message
   std::vector<std::uint64_t> meshBounds_; // per fluid: voxel bound of its mesh fills

@@ -17,7 +17,7 @@ inline constexpr std::size_t kMaxFluids = 1024;
 
 /// Limits the reader enforces on top of the format's own rules.
 struct ReadOptions {
-  /// Most particles a scene may make (explicit positions plus fills, counted without
+  /// Most particles a scene may make (explicit positions, fills and objects, counted without
   /// generating anything); a bigger scene is refused before anything is allocated.
   std::uint64_t maxParticles = 20'000'000;
 };

@@ -247,11 +247,72 @@ constexpr Field<InteractionDesc> kInteraction[] = {
 
 constexpr Field<PairDesc> kPair[] = {
     field<&PairDesc::a>({.tag = "A", .kind = Kind::String, .unit = "-",
-                         .meaning = "first fluid of the pair",
-                         .rule = "the Name of a fluid of the scene", .required = true}),
+                         .meaning = "first fluid or object of the pair",
+                         .rule = "the Name of a fluid or an object of the scene; not two objects",
+                         .required = true}),
     field<&PairDesc::b>({.tag = "B", .kind = Kind::String, .unit = "-",
-                         .meaning = "second fluid; B = A replaces that fluid's own function",
-                         .rule = "the Name of a fluid of the scene", .required = true}),
+                         .meaning = "second fluid or object; B = A, a fluid, replaces that "
+                                    "fluid's own function",
+                         .rule = "the Name of a fluid or an object of the scene; not two objects",
+                         .required = true}),
+};
+
+constexpr Field<ObjectDesc> kObject[] = {
+    field<&ObjectDesc::name>(
+        {.tag = "Name", .kind = Kind::String, .unit = "-",
+         .meaning = "the object's name, in .sim files and in Pair",
+         .rule = "no slash, backslash or control character; unique among the objects and fluids",
+         .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
+    field<&ObjectDesc::geometry>(
+        {.tag = "Geometry", .kind = Kind::String, .unit = "-",
+         .meaning = "mesh file (OBJ, PLY, STL, glTF, FBX...), relative to the scene's folder; "
+                    "closed when Shape is mesh and IsDynamic is true",
+         .rule = "a relative path that stays inside the scene's folder tree (symbolic links "
+                 "resolved)",
+         .defaultText = "none: a primitive (Shape and Size)"}),
+    field<&ObjectDesc::shape>(
+        {.tag = "Shape", .kind = Kind::Enum, .unit = "-",
+         .meaning = "the primitive whose inertia approximates the body, or mesh: the exact "
+                    "inertia of the closed mesh",
+         .rule = "mesh needs Geometry; a primitive without Geometry needs Size",
+         .choices = kObjectShapeNames,
+         .defaultText = "mesh when Geometry is given (else required)"}),
+    field<&ObjectDesc::size>(
+        {.tag = "Size", .kind = Kind::RealList, .unit = "units", .range = kPositive,
+         .meaning = "the primitive's extents: sphere radius; cone and cylinder radius height "
+                    "(axis along y); box width height depth",
+         .rule = "1, 2 or 3 numbers by Shape (sphere, cone/cylinder, box); not with Shape mesh",
+         .defaultText = "none: fitted to Geometry"}),
+    field<&ObjectDesc::particleSize>(
+        {.tag = "ParticleSize", .kind = Kind::Real, .unit = "units", .range = kPositive,
+         .meaning = "diameter of the particles that fill the body",
+         .defaultText = "1/20 of the largest extent (after UniformScale)"}),
+    field<&ObjectDesc::uniformScale>(
+        {.tag = "UniformScale", .kind = Kind::Real, .unit = "-", .range = kPositive,
+         .meaning = "scales the geometry (and Size) about its origin"}),
+    field<&ObjectDesc::initialPosition>(
+        {.tag = "InitialPosition", .kind = Kind::Vec3, .unit = "units",
+         .meaning = "where the geometry's origin is placed"}),
+    field<&ObjectDesc::initialRotation>(
+        {.tag = "InitialRotation", .kind = Kind::Vec3, .unit = "degrees",
+         .meaning = "Euler angles, applied about X, then Y, then Z"}),
+    field<&ObjectDesc::initialLinearVelocity>(
+        {.tag = "InitialLinearVelocity", .kind = Kind::Vec3, .unit = "units/s",
+         .meaning = "velocity of the centre of mass"}),
+    field<&ObjectDesc::initialAngularVelocity>(
+        {.tag = "InitialAngularVelocity", .kind = Kind::Vec3, .unit = "degrees/s",
+         .meaning = "angular velocity about the world axes"}),
+    field<&ObjectDesc::normalAttenuation>(
+        {.tag = "NormalAttenuation", .kind = Kind::Real, .unit = "-", .range = kUnitInterval,
+         .meaning = "restitution e at contacts with walls and objects (each side's mean)"}),
+    field<&ObjectDesc::tangentAttenuation>(
+        {.tag = "TangentAttenuation", .kind = Kind::Real, .unit = "-", .range = kUnitInterval,
+         .meaning = "friction at contacts with walls and objects (each side's mean)"}),
+    field<&ObjectDesc::mass>({.tag = "Mass", .kind = Kind::Real, .unit = "mass",
+                              .range = kPositive, .meaning = "mass of the whole body"}),
+    field<&ObjectDesc::isDynamic>(
+        {.tag = "IsDynamic", .kind = Kind::Bool, .unit = "-",
+         .meaning = "false: a static body that never moves (an open mesh is fine then)"}),
 };
 
 constexpr std::string_view kOneFunction = "exactly one function per parent";
@@ -263,15 +324,23 @@ constexpr ElementInfo kElements[] = {
     {"Camera", "Scene", false, "optional", "start pose of the viewer and renderer"},
     {"Environment", "Scene", false, "optional", "the container; absent: no walls at all"},
     {"Fluid", "Scene", true, "up to 1024", "one substance and its particles"},
+    {"Object", "Scene", true, "any number", "a rigid body made of particles"},
     {"Interactions", "Scene", false, "optional", "the dictionary of interactions"},
     {"Fill", "Fluid", true, "any number", "a lattice of particles filling a shape"},
     {"FluidFluid", "Interactions", false, "optional",
      "the function between particles of two different fluids"},
-    {"Pair", "Interactions", true, "any number", "an override for fluids A and B"},
+    {"FluidObject", "Interactions", false, "optional",
+     "the function between a fluid's particles and an object's"},
+    {"Pair", "Interactions", true, "any number",
+     "an override for A and B, each a fluid or an object"},
     {"Linear", "FluidFluid", false, kOneFunction, "a clamped straight line"},
     {"LennardJones", "FluidFluid", false, kOneFunction, "the seed's clamped 12-6 shape"},
     {"LennardJonesForce", "FluidFluid", false, kOneFunction, "the true 12-6 force -dU/dr"},
     {"Curve", "FluidFluid", false, kOneFunction, "a piecewise linear function"},
+    {"Linear", "FluidObject", false, kOneFunction, "a clamped straight line"},
+    {"LennardJones", "FluidObject", false, kOneFunction, "the seed's clamped 12-6 shape"},
+    {"LennardJonesForce", "FluidObject", false, kOneFunction, "the true 12-6 force -dU/dr"},
+    {"Curve", "FluidObject", false, kOneFunction, "a piecewise linear function"},
     {"Linear", "Pair", false, kOneFunction, "a clamped straight line"},
     {"LennardJones", "Pair", false, kOneFunction, "the seed's clamped 12-6 shape"},
     {"LennardJonesForce", "Pair", false, kOneFunction, "the true 12-6 force -dU/dr"},
@@ -314,6 +383,30 @@ template <>
 std::span<const Field<InteractionDesc>> fieldsOf<InteractionDesc>() { return kInteraction; }
 template <>
 std::span<const Field<PairDesc>> fieldsOf<PairDesc>() { return kPair; }
+template <>
+std::span<const Field<ObjectDesc>> fieldsOf<ObjectDesc>() { return kObject; }
+
+std::size_t objectSizeCount(ObjectShape shape) {
+  switch (shape) {
+    case ObjectShape::Mesh: return 0;
+    case ObjectShape::Sphere: return 1;
+    case ObjectShape::Cone:
+    case ObjectShape::Cylinder: return 2;
+    case ObjectShape::Box: return 3;
+  }
+  return 0;
+}
+
+std::string_view objectSizeWords(ObjectShape shape) {
+  switch (shape) {
+    case ObjectShape::Mesh: return "";
+    case ObjectShape::Sphere: return "radius";
+    case ObjectShape::Cone:
+    case ObjectShape::Cylinder: return "radius height";
+    case ObjectShape::Box: return "width height depth";
+  }
+  return "";
+}
 
 std::span<const Field<FillDesc>> fillShapeFields(FillShape shape) {
   switch (shape) {
@@ -362,7 +455,9 @@ std::string allowedText(const FieldInfo& info) {
     case Kind::Bool: s = "true, false, 1, 0"; break;
     case Kind::Enum: s = joinChoices(info.choices); break;
     case Kind::String: s = info.rule.empty() ? "any text" : std::string(info.rule); break;
-    case Kind::RealList: s = "finite numbers"; break;
+    case Kind::RealList:
+      s = info.range.unbounded() ? "finite numbers" : "numbers " + info.range.describe();
+      break;
     case Kind::PointList: s = "3 finite numbers per point"; break;
   }
   if (!info.rule.empty() && info.kind != Kind::String) s += "; " + std::string(info.rule);
@@ -395,15 +490,20 @@ std::string formatValue(const FieldInfo& info, const Value& value) {
 
 namespace {
 
+// One table; defaults is the struct the defaults are read from (a default-constructed S,
+// or where an element starts from other values, such as <FluidObject>).
 template <class S>
-void appendTable(std::string& out, std::string_view title, std::span<const Field<S>> fields) {
+void appendTable(std::string& out, std::string_view title, std::span<const Field<S>> fields,
+                 const S& defaults = S{}) {
   out += fmt::format("### {}\n\n", title);
   out += "| Tag | Type | Unit | Default | Allowed | Meaning |\n";
   out += "|---|---|---|---|---|---|\n";
   for (const Field<S>& f : fields) {
     std::string def = "required";
-    if (!f.required) {
-      def = formatValue(f, f.defaultValue());
+    if (!f.defaultText.empty()) {
+      def = f.defaultText;
+    } else if (!f.required) {
+      def = formatValue(f, f.get(defaults));
       def = def.empty() ? "none" : "`" + def + "`";
     }
     out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", f.tag, kindName(f.kind), f.unit,
@@ -430,12 +530,15 @@ std::string schemaMarkdown() {
   appendTable<FillDesc>(out, "`<Fill>` with Shape `box`", kFillBox);
   appendTable<FillDesc>(out, "`<Fill>` with Shape `sphere`", kFillSphere);
   appendTable<FillDesc>(out, "`<Fill>` with Shape `mesh`", kFillMesh);
+  appendTable<ObjectDesc>(out, "`<Object>`", kObject);
   appendTable<Linear>(out, "`<Linear>`", kLinear);
   appendTable<LennardJones>(out, "`<LennardJones>`", kLennardJones);
   appendTable<LennardJonesForce>(out, "`<LennardJonesForce>`", kLennardJonesForce);
   appendTable<Curve>(out, "`<Curve>`", kCurve);
   appendTable<InteractionDesc>(out, "`<FluidFluid>` and `<Pair>`: velocity terms", kInteraction);
-  appendTable<PairDesc>(out, "`<Pair>`: the two fluids", kPair);
+  appendTable<InteractionDesc>(out, "`<FluidObject>`: velocity terms", kInteraction,
+                               InteractionsDesc{}.fluidObject);
+  appendTable<PairDesc>(out, "`<Pair>`: the two fluids or objects", kPair);
   return out;
 }
 

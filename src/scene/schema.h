@@ -5,6 +5,7 @@
 ///
 /// Defaults are never written as literals here: a field's default is read from the
 /// default-constructed description struct through the field's member pointer.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -68,6 +69,10 @@ struct FieldInfo {
   std::string_view rule;                      ///< extra rule checked by the reader, in words
   std::span<const std::string_view> choices;  ///< Enum: the names, indexed by value
   bool required = false;                      ///< must be given (no default)
+  /// The default in words, when the reader decides it from other fields ("1/20 of the
+  /// largest extent"): the struct's default is then only a placeholder, which the docs
+  /// do not show and the writer leaves out (reading the file back restores it).
+  std::string_view defaultText;
 };
 
 /// A field of the description struct S: its info plus how to read and write it.
@@ -81,6 +86,11 @@ struct Field : FieldInfo {
 
   /// The default: the value in a default-constructed S.
   [[nodiscard]] Value defaultValue() const { return get(S{}); }
+  /// True when s holds the placeholder of a field whose default is in words
+  /// (defaultText): the writer leaves such a field out.
+  [[nodiscard]] bool holdsPlaceholder(const S& s) const {
+    return !defaultText.empty() && get(s) == defaultValue();
+  }
 };
 
 namespace detail {
@@ -146,11 +156,20 @@ inline constexpr std::string_view kIntegratorNames[] = {"explicit-euler", "sympl
                                                         "velocity-verlet"};
 /// Names of FillShape values, as written in scene files.
 inline constexpr std::string_view kFillShapeNames[] = {"box", "sphere", "mesh"};
+/// Names of ObjectShape values, as written in scene files.
+inline constexpr std::string_view kObjectShapeNames[] = {"mesh", "sphere", "cone", "box",
+                                                         "cylinder"};
+
+/// How many numbers an object's Size has for this shape (0 for mesh: nothing to size).
+std::size_t objectSizeCount(ObjectShape shape);
+/// What the numbers of an object's Size are for this shape ("radius height"; "" for mesh).
+std::string_view objectSizeWords(ObjectShape shape);
 
 /// The fields of the element described by S. Specialised for SimulationDesc (Simulation),
 /// CameraDesc, EnvironmentDesc, FluidDesc, FillDesc (the tags every fill shape has),
 /// forces::Linear, forces::LennardJones, forces::LennardJonesForce, forces::Curve,
-/// InteractionDesc (Damping, RelativeVelocity of FluidFluid and Pair) and PairDesc (A, B).
+/// InteractionDesc (Damping, RelativeVelocity of FluidFluid, FluidObject and Pair),
+/// PairDesc (A, B) and ObjectDesc (Object).
 template <class S>
 std::span<const Field<S>> fieldsOf();
 
@@ -176,6 +195,8 @@ template <>
 std::span<const Field<InteractionDesc>> fieldsOf<InteractionDesc>();
 template <>
 std::span<const Field<PairDesc>> fieldsOf<PairDesc>();
+template <>
+std::span<const Field<ObjectDesc>> fieldsOf<ObjectDesc>();
 
 /// The fields only a fill of this shape has (besides fieldsOf<FillDesc>()).
 std::span<const Field<FillDesc>> fillShapeFields(FillShape shape);

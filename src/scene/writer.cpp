@@ -34,9 +34,12 @@ class XmlOut {
   }
 
   // One field: a value on one line, or a multi-line value (point lists) one item a line.
+  // A field still at the placeholder of a default in words (an object's ParticleSize 0,
+  // meaning "1/20 of the largest extent") is left out: reading restores it.
   template <class S>
   void fields(std::span<const Field<S>> table, const S& s) {
     for (const Field<S>& f : table) {
+      if (f.holdsPlaceholder(s)) continue;
       std::string value;
       appendXmlEscaped(value, formatValue(f, f.get(s)), f.tag);
       if (value.empty()) {
@@ -107,10 +110,18 @@ std::string writeSceneText(const SceneDesc& scene) {
     }
     out.close("Fluid");
   }
+  for (const ObjectDesc& object : scene.objects) {
+    out.open("Object");
+    out.fields(fieldsOf<ObjectDesc>(), object);
+    out.close("Object");
+  }
   out.open("Interactions");
   out.open("FluidFluid");
   writeInteraction(out, scene.interactions.fluidFluid);
   out.close("FluidFluid");
+  out.open("FluidObject");
+  writeInteraction(out, scene.interactions.fluidObject);
+  out.close("FluidObject");
   for (const PairDesc& pair : scene.interactions.pairs) {
     out.open("Pair");
     out.fields(fieldsOf<PairDesc>(), pair);
