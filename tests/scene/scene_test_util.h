@@ -1,7 +1,10 @@
 #pragma once
 /// Helpers shared by the scene tests: wrapping snippets into scenes and finding lines.
 #include <gtest/gtest.h>
+#include <stdlib.h>
 
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -39,6 +42,38 @@ inline InputError readError(std::string_view text, const ReadOptions& options = 
   }
   ADD_FAILURE() << "no InputError for:\n" << text;
   return InputError({}, "none");
+}
+
+/// A fresh folder under the system's temporary folder, removed with its contents.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "softsub-scene-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Reads the scene file expecting an InputError; fails the test when it reads.
+inline InputError readFileError(const std::filesystem::path& scene, const ReadOptions& options = {}) {
+  try {
+    (void)readSceneFile(scene.string(), options);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted " << scene;
+  return InputError({}, "");
 }
 
 }  // namespace softsub::scene::testing

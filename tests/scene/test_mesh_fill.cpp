@@ -2,7 +2,6 @@
 // path rules against the scene's folder, the mesh checked at the boundary) and compiled.
 // The rules that need no file are rows of reader_error_rows.h.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene/writer.h"
+#include "scene_test_util.h"
 #include "support/mesh_files.h"
 
 namespace softsub::scene {
@@ -19,25 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system's temporary folder, removed with its contents.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "softsub-meshfill-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using testing::readFileError;
+using testing::TempFolder;
 
 void writeText(const fs::path& file, const std::string& text) { scenarios::writeTextFile(file, text); }
 using scenarios::boxObj;
@@ -47,17 +30,6 @@ std::string meshScene(const std::string& geometry, double spacing, const std::st
   return "<Scene version=\"1\">\n<Fluid>\n<Name>goo</Name>\n<Fill>\n<Shape>mesh</Shape>\n"
          "<Geometry>" + geometry + "</Geometry>\n<Spacing>" + std::to_string(spacing) +
          "</Spacing>\n" + extra + "</Fill>\n</Fluid>\n</Scene>\n";
-}
-
-// The InputError reading dir/t.scene gives; fails the test when it reads.
-InputError readFileError(const fs::path& scene, const ReadOptions& options = {}) {
-  try {
-    (void)readSceneFile(scene.string(), options);
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "accepted " << scene;
-  return InputError({}, "");
 }
 
 TEST(MeshFill, CubeFillsItsVolumeWithin3Percent) {

@@ -23,6 +23,7 @@ void forEachTable(Visitor&& visit) {
   visit("Fill box", fillShapeFields(FillShape::Box));
   visit("Fill sphere", fillShapeFields(FillShape::Sphere));
   visit("Fill mesh", fillShapeFields(FillShape::Mesh));
+  visit("Object", fieldsOf<ObjectDesc>());
   visit("Linear", fieldsOf<forces::Linear>());
   visit("LennardJones", fieldsOf<forces::LennardJones>());
   visit("LennardJonesForce", fieldsOf<forces::LennardJonesForce>());
@@ -64,7 +65,8 @@ TEST(Schema, EveryFieldIsWellFormed) {
 TEST(Schema, DefaultsSatisfyTheirOwnRanges) {
   forEachTable([](std::string_view element, auto table) {
     for (const auto& f : table) {
-      if (f.required) continue;
+      // A default in words is decided by the reader; the struct holds only a placeholder.
+      if (f.required || !f.defaultText.empty()) continue;
       SCOPED_TRACE(std::string(element) + "/" + std::string(f.tag));
       const Value v = f.defaultValue();
       if (const auto* d = std::get_if<double>(&v)) {
@@ -101,6 +103,7 @@ TEST(Schema, TagsAreUniqueWithinEachElement) {
   unique({tags(fieldsOf<CameraDesc>())});
   unique({tags(fieldsOf<EnvironmentDesc>())});
   unique({tags(fieldsOf<FluidDesc>()), {"Fill"}});
+  unique({tags(fieldsOf<ObjectDesc>())});
   for (const FillShape s : {FillShape::Box, FillShape::Sphere, FillShape::Mesh}) {
     unique({tags(fieldsOf<FillDesc>()), tags(fillShapeFields(s))});
   }
@@ -134,6 +137,59 @@ TEST(Schema, EnumNamesMatchTheEnums) {
   EXPECT_EQ(kFillShapeNames[static_cast<int>(FillShape::Box)], "box");
   EXPECT_EQ(kFillShapeNames[static_cast<int>(FillShape::Sphere)], "sphere");
   EXPECT_EQ(kFillShapeNames[static_cast<int>(FillShape::Mesh)], "mesh");
+  EXPECT_EQ(std::size(kObjectShapeNames), 5U);
+  EXPECT_EQ(kObjectShapeNames[static_cast<int>(ObjectShape::Mesh)], "mesh");
+  EXPECT_EQ(kObjectShapeNames[static_cast<int>(ObjectShape::Sphere)], "sphere");
+  EXPECT_EQ(kObjectShapeNames[static_cast<int>(ObjectShape::Cone)], "cone");
+  EXPECT_EQ(kObjectShapeNames[static_cast<int>(ObjectShape::Box)], "box");
+  EXPECT_EQ(kObjectShapeNames[static_cast<int>(ObjectShape::Cylinder)], "cylinder");
+}
+
+TEST(Schema, ObjectSizeCountsFollowTheShape) {
+  EXPECT_EQ(objectSizeCount(ObjectShape::Mesh), 0U);
+  EXPECT_EQ(objectSizeCount(ObjectShape::Sphere), 1U);
+  EXPECT_EQ(objectSizeCount(ObjectShape::Cone), 2U);
+  EXPECT_EQ(objectSizeCount(ObjectShape::Cylinder), 2U);
+  EXPECT_EQ(objectSizeCount(ObjectShape::Box), 3U);
+  EXPECT_EQ(objectSizeWords(ObjectShape::Box), "width height depth");
+  EXPECT_EQ(objectSizeWords(ObjectShape::Cone), "radius height");
+}
+
+// Fields whose default the reader decides show it in words, and only those hold a
+// placeholder the writer leaves out.
+TEST(Schema, DefaultsInWordsAreShownAndArePlaceholders) {
+  const std::string md = schemaMarkdown();
+  EXPECT_NE(md.find("| `ParticleSize` | real | units | 1/20 of the largest extent (after UniformScale) | > 0 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| `Name` | string | - | `object<N>`, N its position among the objects (from 1) |"),
+            std::string::npos);
+  const ObjectDesc fresh;
+  std::set<std::string_view> placeholders;
+  for (const auto& f : fieldsOf<ObjectDesc>()) {
+    if (f.holdsPlaceholder(fresh)) placeholders.insert(f.tag);
+  }
+  EXPECT_EQ(placeholders, (std::set<std::string_view>{"Name", "Geometry", "Shape", "Size", "ParticleSize"}));
+  ObjectDesc sized;
+  sized.particleSize = 0.25;
+  sized.shape = ObjectShape::Box;
+  for (const auto& f : fieldsOf<ObjectDesc>()) {
+    if (f.tag == "ParticleSize" || f.tag == "Shape") {
+      EXPECT_FALSE(f.holdsPlaceholder(sized)) << f.tag;
+    }
+  }
+}
+
+// <FluidObject>'s velocity terms default to InteractionsDesc{}.fluidObject, not to
+// InteractionDesc{}: the docs table says so.
+TEST(Schema, FluidObjectTableShowsItsOwnDefaults) {
+  const std::string md = schemaMarkdown();
+  const std::size_t at = md.find("### `<FluidObject>`: velocity terms");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = md.find("###", at + 3);
+  const std::string table = md.substr(at, end - at);
+  EXPECT_NE(table.find("| `RelativeVelocity` | real | mass/s | `2` |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| `Damping` | real | mass/s | `0` |"), std::string::npos) << table;
 }
 
 TEST(Schema, RangesDescribeThemselves) {

@@ -70,6 +70,62 @@ TEST(Writer, RoundTripsAHandMadeScene) {
   EXPECT_EQ(writeSceneText(back), writeSceneText(d));
 }
 
+ObjectDesc primitive(const std::string& name, ObjectShape shape, std::vector<double> size) {
+  ObjectDesc o;
+  o.name = name;
+  o.shape = shape;
+  o.size = std::move(size);
+  return o;
+}
+
+TEST(Writer, RoundTripsObjectsFluidObjectAndPairsWithObjects) {
+  SceneDesc d;
+  d.fluids = {fluidWithBox("water")};
+  ObjectDesc ball = primitive("ball", ObjectShape::Sphere, {0.5});
+  ball.particleSize = 0.125;
+  ball.uniformScale = 2;
+  ball.initialPosition = {1, 2, 3};
+  ball.initialRotation = {90, -45, 1.0 / 3};
+  ball.initialLinearVelocity = {0, -1, 0.25};
+  ball.initialAngularVelocity = {0, 360, 0};
+  ball.normalAttenuation = 1;
+  ball.tangentAttenuation = 0;
+  ball.mass = 1e-3;
+  ball.isDynamic = false;
+  d.objects = {ball, primitive("cone #1 <a&b>", ObjectShape::Cone, {1, 2}),
+               primitive("crate", ObjectShape::Box, {1, 2, 3}),
+               primitive("object4", ObjectShape::Cylinder, {0.25, 4})};
+  d.interactions.fluidObject = {forces::Curve{{0, 8, 1, 0}}, 0.5, 0};
+  d.interactions.pairs = {{"water", "ball", {forces::Linear{3, 2, -1, 3}, 1, 0}},
+                          {"cone #1 <a&b>", "water", {forces::LennardJonesForce{}, 0, 2}},
+                          {"water", "water", {forces::LennardJones{}, 0, 0}}};
+  const std::string text = writeSceneText(d);
+  const SceneDesc back = roundTrip(d);
+  EXPECT_EQ(back, d) << text;
+  EXPECT_EQ(writeSceneText(back), text);
+  EXPECT_NE(text.find("<Name>cone #1 &lt;a&amp;b&gt;</Name>"), std::string::npos) << text;
+  EXPECT_NE(text.find("<Shape>cylinder</Shape>"), std::string::npos) << text;
+  EXPECT_NE(text.find("<Size>1 2 3</Size>"), std::string::npos) << text;
+  EXPECT_NE(text.find("<ParticleSize>0.125</ParticleSize>"), std::string::npos) << text;
+  EXPECT_NE(text.find("<FluidObject>"), std::string::npos) << text;
+  // The automatic particle size (0 in the description) is left out, and no empty Geometry.
+  EXPECT_EQ(text.find("<ParticleSize>0</ParticleSize>"), std::string::npos) << text;
+  EXPECT_EQ(text.find("<Geometry"), std::string::npos) << text;
+}
+
+TEST(Writer, FluidObjectDefaultsRoundTripAndAreTheSeeds) {
+  SceneDesc d;
+  const InteractionDesc def = InteractionsDesc{}.fluidObject;
+  EXPECT_EQ(def.function, forces::PairFunction(forces::Linear{5, 1.5, 0, 5}));
+  EXPECT_EQ(def.relativeVelocity, 2);
+  const std::string text = writeSceneText(d);
+  EXPECT_NE(text.find("<FluidObject>\n      <Linear>\n        <AtZero>5</AtZero>\n        "
+                      "<Cutoff>1.5</Cutoff>"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(roundTrip(d), d);
+}
+
 TEST(Writer, WritesEveryTagWithDefaultsAndNicelyIndented) {
   SceneDesc d;
   d.environment.emplace();
@@ -142,12 +198,21 @@ class RandomScenes {
     if (coin()) randomize(fieldsOf<EnvironmentDesc>(), d.environment.emplace());
     const int fluids = uniformInt(0, 4);
     for (int i = 0; i < fluids; ++i) d.fluids.push_back(fluid(i));
+    const int objects = uniformInt(0, 3);
+    for (int i = 0; i < objects; ++i) d.objects.push_back(object(i));
     if (coin()) d.interactions.fluidFluid = interaction();
+    if (coin()) d.interactions.fluidObject = interaction();
     std::set<std::pair<std::string, std::string>> used;
-    for (int i = 0; i < 6 && !d.fluids.empty(); ++i) {
+    std::vector<std::pair<std::string, bool>> names;  // name, is an object
+    for (const auto& f : d.fluids) names.emplace_back(f.name, false);
+    for (const auto& o : d.objects) names.emplace_back(o.name, true);
+    for (int i = 0; i < 8 && !d.fluids.empty(); ++i) {
       PairDesc p;
-      p.a = d.fluids[uniformIndex(d.fluids.size())].name;
-      p.b = d.fluids[uniformIndex(d.fluids.size())].name;
+      const auto& [a, aObject] = names[uniformIndex(names.size())];
+      const auto& [b, bObject] = names[uniformIndex(names.size())];
+      if (aObject && bObject) continue;  // objects collide by impulses, never by a Pair
+      p.a = a;
+      p.b = b;
       if (!used.insert(std::minmax(p.a, p.b)).second) continue;
       p.interaction = interaction();
       d.interactions.pairs.push_back(p);
@@ -222,6 +287,28 @@ class RandomScenes {
     const int fills = explicitCount == 0 ? uniformInt(1, 3) : uniformInt(0, 2);
     for (int i = 0; i < fills; ++i) f.fills.push_back(fill());
     return f;
+  }
+
+  // A primitive object (no mesh file): every field random, the name unique (sometimes
+  // the reader's own default form, sometimes with spaces and XML characters), Size with the
+  // shape's count, and the scale and particle size kept so the particle bound stays small.
+  ObjectDesc object(int index) {
+    ObjectDesc o;
+    randomize(fieldsOf<ObjectDesc>(), o);
+    switch (rng_() % 3) {
+      case 0: o.name = "object" + std::to_string(index + 1); break;
+      case 1: o.name = "body " + std::to_string(index) + " <a & b>"; break;
+      default: o.name = "o" + std::to_string(index) + "_\xC3\xA9"; break;  // UTF-8 e-acute
+    }
+    o.geometry.clear();
+    o.shape = static_cast<ObjectShape>(uniformInt(1, 4));  // a primitive
+    o.size.clear();
+    for (std::size_t i = 0; i < objectSizeCount(o.shape); ++i) o.size.push_back(uniform(0.05, 10));
+    o.uniformScale = coin() ? 1.0 : uniform(0.1, 4);
+    double largest = 0;
+    for (const double v : o.size) largest = std::max(largest, v);
+    o.particleSize = coin() ? 0.0 : largest * o.uniformScale / uniform(1, 30);
+    return o;
   }
 
   FillDesc fill() {
