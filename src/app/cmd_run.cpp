@@ -75,6 +75,22 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
 
 bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply; }
 
+/// Points every body's `.sim` Filename at `<scene>Geo/<name>.obj` and returns the meshes
+/// to write there.
+std::vector<cache::ObjectMesh> objectMeshes(scene::Compiled& compiled, const std::string& sceneName) {
+  std::vector<cache::ObjectMesh> out;
+  auto& bodies = compiled.model.bodies.bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    bodies[b].geometryFile = cache::geometryFileName(sceneName, bodies[b].name);
+    const geometry::TriangleMesh& m = compiled.objectMeshes.at(b);
+    cache::ObjectMesh& mesh = out.emplace_back();
+    mesh.name = bodies[b].name;
+    for (const Vec3& v : m.vertices) mesh.vertices.push_back({v.x(), v.y(), v.z()});
+    mesh.triangles.assign(m.triangles.begin(), m.triangles.end());
+  }
+  return out;
+}
+
 std::string folderText(const std::filesystem::path& dir) {
   std::string s = dir.generic_string();
   if (s.empty()) s = ".";
@@ -129,7 +145,10 @@ int runCommand(const RunOptions& o) {
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
 
+  if (formats.sim)
+    for (const scene::ObjectDesc& obj : loaded.desc.objects) cache::checkFileNamePart(obj.name, "Object/Name");
   scene::Compiled compiled = scene::compile(loaded.desc);
+  std::vector<cache::ObjectMesh> meshes = objectMeshes(compiled, loaded.name);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
@@ -139,6 +158,7 @@ int runCommand(const RunOptions& o) {
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
 
   cache::FrameWriter writer(outDir, loaded.name, formats);
+  writer.setObjectMeshes(std::move(meshes));
   LastFrame done;
   std::vector<FrameObserver*> observers;
   if (anyFormat(formats)) observers.push_back(&writer);

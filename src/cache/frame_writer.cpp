@@ -78,6 +78,15 @@ void FrameWriter::prepareFolders() {
   ensureDirectory(dir_);
   if (formats_.pdc) ensureDirectory(dir_ / "pdc");
   if (formats_.ply) ensureDirectory(dir_ / "ply");
+  if (formats_.sim && !meshes_.empty()) {
+    for (const ObjectMesh& mesh : meshes_) checkFileNamePart(mesh.name, "Object/Name");
+    ensureDirectory(dir_ / (sceneName_ + "Geo"));
+    for (const ObjectMesh& mesh : meshes_) {
+      std::filesystem::path path = dir_ / geometryFileName(sceneName_, mesh.name);
+      writeFileAtomic(path, encodeObj(mesh));
+      written_.push_back(std::move(path));
+    }
+  }
   foldersReady_ = true;
 }
 
@@ -92,7 +101,7 @@ void FrameWriter::onFrame(const FrameSnapshot& frame) {
       pdcPaths.push_back(pdcPath(dir_, fluid.name, frame.frame, frame.framesPerSecond));
     }
   }
-  prepareFolders();
+  prepareFolders();  // on the first frame also the objects' meshes
   if (formats_.pdc) {
     for (std::size_t f = 0; f < frame.fluids.size(); ++f) {
       encodePdcInto(buffer_, frame.fluids[f]);

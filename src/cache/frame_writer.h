@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cache/obj_format.h"
 #include "core/snapshot.h"
 
 namespace softsub::cache {
@@ -32,6 +33,10 @@ class FrameWriter : public FrameObserver {
   /// Writes into `outputDir` (e.g. `<scene>Sim`), naming files after `sceneName`.
   FrameWriter(std::filesystem::path outputDir, std::string sceneName, Formats formats = {});
 
+  /// The rigid bodies' meshes: with `.sim` output, each is written once, before the
+  /// first frame, to `<scene>Geo/<name>.obj` in the output folder (geometryFileName).
+  void setObjectMeshes(std::vector<ObjectMesh> meshes) { meshes_ = std::move(meshes); }
+
   /// Writes the frame's files; IoError if one cannot be written (earlier frames stay intact).
   void onFrame(const FrameSnapshot& frame) override;
 
@@ -50,6 +55,7 @@ class FrameWriter : public FrameObserver {
   bool foldersReady_ = false;
   std::string buffer_;  ///< reused encoding buffer: no per-frame growth after the first
   std::vector<std::filesystem::path> written_;
+  std::vector<ObjectMesh> meshes_;
 };
 
 }  // namespace softsub::cache
