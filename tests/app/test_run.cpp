@@ -15,8 +15,11 @@ namespace {
 
 /// The files a run of `stem` with fluids `fluids` writes for frames 0..last at 24 fps.
 std::vector<std::string> expectedFiles(const std::string& stem, const std::vector<std::string>& fluids,
-                                       int last, bool sim = true, bool pdc = true, bool ply = true) {
+                                       int last, bool sim = true, bool pdc = true, bool ply = true,
+                                       const std::vector<std::string>& objects = {}) {
   std::vector<std::string> out;
+  if (sim)  // each object's mesh, once
+    for (const std::string& o : objects) out.push_back(fmt::format("{}Geo/{}.obj", stem, o));
   for (int f = 0; f <= last; ++f) {
     if (sim) out.push_back(fmt::format("{}.{:04}.sim", stem, f));
     if (ply) out.push_back(fmt::format("ply/{}.{:04}.ply", stem, f));
@@ -30,6 +33,12 @@ std::vector<std::string> expectedFiles(const std::string& stem, const std::vecto
 std::vector<std::string> fluidNames(const fs::path& scene) {
   std::vector<std::string> out;
   for (const auto& f : scene::readSceneFile(scene.string()).fluids) out.push_back(f.name);
+  return out;
+}
+
+std::vector<std::string> objectNames(const fs::path& scene) {
+  std::vector<std::string> out;
+  for (const auto& o : scene::readSceneFile(scene.string()).objects) out.push_back(o.name);
   return out;
 }
 
@@ -56,7 +65,7 @@ TEST_P(Examples, ThreeFramesWriteEveryFormatAndReadBack) {
   const RunResult r = runSoftsub("run --frames 3 --out " + quote(out) + " " + quote(scene), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string stem = scene.stem().string();
-  EXPECT_EQ(listFiles(out), expectedFiles(stem, fluidNames(scene), 3));
+  EXPECT_EQ(listFiles(out), expectedFiles(stem, fluidNames(scene), 3, true, true, true, objectNames(scene)));
   const auto counts = fluidCounts(scene);
   for (int f = 0; f <= 3; ++f) {
     const cache::SimFile sim = cache::readSimFile(out / fmt::format("{}.{:04}.sim", stem, f));
@@ -64,6 +73,12 @@ TEST_P(Examples, ThreeFramesWriteEveryFormatAndReadBack) {
     EXPECT_NEAR(sim.frame.time, f / 24.0, 1e-9);
     ASSERT_EQ(sim.frame.fluids.size(), counts.size());
     for (std::size_t k = 0; k < counts.size(); ++k) EXPECT_EQ(sim.frame.fluids[k].count(), counts[k]);
+    // Every object names its mesh, which is there.
+    ASSERT_EQ(sim.frame.objects.size(), objectNames(scene).size());
+    for (const ObjectSnapshot& o : sim.frame.objects) {
+      EXPECT_EQ(o.filename, fmt::format("{}Geo/{}.obj", stem, o.name));
+      EXPECT_TRUE(fs::is_regular_file(out / o.filename)) << o.filename;
+    }
   }
   // Only --out was written: nothing beside the scene, nothing in the working folder.
   EXPECT_FALSE(fs::exists(scene.parent_path() / (stem + "Sim")));
@@ -82,7 +97,8 @@ TEST_P(Examples, RerunGivesByteIdenticalFiles) {
 
 INSTANTIATE_TEST_SUITE_P(App, Examples,
                          ::testing::Values("softsub-demo.scene", "honey-drop.scene", "two-fluids.scene",
-                                           "jelly-block.scene", "goo-torus.scene"),
+                                           "jelly-block.scene", "goo-torus.scene", "interactions.scene",
+                                           "viscous-posts.scene", "wall-impact.scene", "box-on-jelly.scene"),
                          exampleTestName);
 
 TEST(Run, EveryExampleIsCovered) {
@@ -92,7 +108,7 @@ TEST(Run, EveryExampleIsCovered) {
     const RunResult r = runSoftsub("run -q --frames 1 --formats sim --out " + quote(tmp / "o") + " " + quote(p),
                                    tmp.path());
     EXPECT_EQ(r.code, 0) << p << "\n" << r.err;
-    EXPECT_EQ(listFiles(tmp / "o").size(), 2u) << p;
+    EXPECT_EQ(listFiles(tmp / "o").size(), 2u + objectNames(p).size()) << p;
   }
 }
 
