@@ -60,9 +60,11 @@ void printSceneInfo(const std::string& path) {
 
   const ParticleStore& store = compiled.state.particles;
   std::vector<Aabb> boxes(d.fluids.size());
-  for (std::size_t k = 0; k < store.size(); ++k) boxes[store.owner[k]].add(store.px[k], store.py[k], store.pz[k]);
+  for (std::size_t k = 0; k < store.size(); ++k)
+    if (store.owner[k] < boxes.size()) boxes[store.owner[k]].add(store.px[k], store.py[k], store.pz[k]);
+  const std::size_t bodyParticles = compiled.model.bodies.particleCount();
   fmt::print("fluids: {}, {} particles in all\n", d.fluids.size(),
-             groupThousands(compiled.model.particleCount()));
+             groupThousands(compiled.model.particleCount() - bodyParticles));
   for (std::size_t f = 0; f < d.fluids.size(); ++f) {
     const scene::FluidDesc& fluid = d.fluids[f];
     fmt::print("  {}: {} particles ({} explicit, {} fills), bounds {}\n", fluid.name,
@@ -71,8 +73,23 @@ void printSceneInfo(const std::string& path) {
     fmt::print("    {}\n", describeFields(fluid, {"Name", "NumberOfParticles"}));
   }
 
+  if (!d.objects.empty()) {
+    fmt::print("objects: {}, {} particles in all\n", d.objects.size(), groupThousands(bodyParticles));
+    for (std::size_t o = 0; o < d.objects.size(); ++o) {
+      const scene::ObjectDesc& obj = d.objects[o];
+      const rigid::BodyInfo& body = compiled.model.bodies.bodies[o];
+      fmt::print("  {}: {}, {} particles of diameter {:g}, {}, mass {:g}\n", obj.name,
+                 obj.geometry.empty() ? std::string(scene::kObjectShapeNames[static_cast<std::size_t>(obj.shape)])
+                                      : obj.geometry,
+                 groupThousands(body.count), 2 * body.particleRadius, obj.isDynamic ? "dynamic" : "static", obj.mass);
+      fmt::print("    {}\n", describeFields(obj, {"Name", "Geometry", "Mass", "IsDynamic"}));
+    }
+  }
+
   fmt::print("interactions:\n");
   fmt::print("  fluid/fluid (different fluids): {}\n", describeInteraction(d.interactions.fluidFluid));
+  if (!d.objects.empty())
+    fmt::print("  fluid/object: {}\n", describeInteraction(d.interactions.fluidObject));
   for (const scene::PairDesc& p : d.interactions.pairs)
     fmt::print("  pair {} / {}: {}\n", p.a, p.b, describeInteraction(p.interaction));
   if (d.interactions.pairs.empty()) fmt::print("  no pair overrides\n");

@@ -38,6 +38,20 @@ TEST(Info, SceneListsFluidsCountsParametersAndInteractions) {
   expectContains(r.out, "bounds x [");
 }
 
+TEST(Info, SceneListsObjectsTheirParticlesAndTheFluidObjectFunction) {
+  TempDir tmp;
+  const RunResult r = runSoftsub("info " + quote(examplesDir() / "interactions.scene"), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectContains(r.out, "fluids: 2, 480 particles in all");  // body particles are not fluid
+  expectContains(r.out, "objects: 3, ");
+  expectContains(r.out, "table: box, ");
+  expectContains(r.out, "particles of diameter 0.5, static, mass 1");
+  expectContains(r.out, "ball: sphere, ");
+  expectContains(r.out, "dynamic, mass 8");
+  expectContains(r.out, "fluid/object: Linear (AtZero 5, Cutoff 1.5, Min 0, Max 5); Damping 0, RelativeVelocity 2");
+  expectContains(r.out, "pair oil / box: Linear (AtZero 6, Cutoff 2");
+}
+
 TEST(Info, SceneWithoutEnvironmentSaysSo) {
   TempDir tmp;
   std::ofstream(tmp / "free.scene")
