@@ -24,14 +24,19 @@ struct Buffers {
   const std::uint32_t* __restrict owner;  // filled only when the list excludes owners
 };
 
-// Squared distances from (xi, yi, zi) to buffer entries [from, len); the slots of
-// those closer than sqrt(cut2) go to b.kept. Returns how many.
-inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
-                            float zi, float cut2) {
+// Squared distances from (xi, yi, zi) to buffer entries [from, len), into b.r2.
+inline void squaredDistances(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi, float zi) {
   for (std::uint32_t k = from; k < len; ++k) {
     const float dx = b.x[k] - xi, dy = b.y[k] - yi, dz = b.z[k] - zi;
     b.r2[k] = dx * dx + dy * dy + dz * dz;
   }
+}
+
+// The slots of buffer entries [from, len) closer than sqrt(cut2) to (xi, yi, zi) go to
+// b.kept. Returns how many.
+inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
+                            float zi, float cut2) {
+  squaredDistances(b, from, len, xi, yi, zi);
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
     b.kept[n] = b.slot[k];
@@ -44,10 +49,7 @@ inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t 
 // body): candidates of the same owner are dropped too.
 inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
                                   float zi, float cut2, std::uint32_t own) {
-  for (std::uint32_t k = from; k < len; ++k) {
-    const float dx = b.x[k] - xi, dy = b.y[k] - yi, dz = b.z[k] - zi;
-    b.r2[k] = dx * dx + dy * dy + dz * dz;
-  }
+  squaredDistances(b, from, len, xi, yi, zi);
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
     b.kept[n] = b.slot[k];

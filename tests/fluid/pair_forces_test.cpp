@@ -113,5 +113,40 @@ TEST(PairForces, CoincidentParticlesStayFinite) {
   EXPECT_FLOAT_EQ(s.fx[0] + s.fx[1], 0.0f);
 }
 
+// Rigid bodies: a list that excludes owners from 1 on drops exactly the pairs of two
+// particles of one such owner, and a row radius list reaches as far as it says.
+TEST(PairList, ExcludesPairsOfOneRigidOwnerAndHonoursRowRadii) {
+  const auto table = threeMaterials();
+  ParticleStore s = scenarios::randomCloud(1500, -4, 4, 0.0f, 3, 7);
+  for (std::size_t i = 0; i < s.size(); ++i) s.owner[i] = static_cast<std::uint32_t>(i % 5);  // owners 0..4
+  const std::vector<float> radius{2.2f, 2.2f, 2.2f};  // beyond every cutoff (longest 2.0)
+  neighbors::CellGrid grid;
+  grid.rebuild(s, 2.2f);
+  PairList plain, excluding;
+  plain.build(grid, table, s, 0.0f, {.rowRadius = radius});
+  excluding.build(grid, table, s, 0.0f, {.rowRadius = radius, .exclusiveOwnersFrom = 1});
+  std::size_t dropped = 0, samePlain = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    for (const std::uint32_t j : excluding.partners(i))
+      EXPECT_FALSE(s.owner[i] >= 1 && s.owner[i] == s.owner[j]) << i << " " << j;
+    for (const std::uint32_t j : plain.partners(i)) {
+      const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+      EXPECT_LT(dx * dx + dy * dy + dz * dz, 2.2f * 2.2f);
+      if (s.owner[i] >= 1 && s.owner[i] == s.owner[j]) ++samePlain;
+    }
+    dropped += plain.partners(i).size() - excluding.partners(i).size();
+  }
+  EXPECT_GT(samePlain, 100U);
+  EXPECT_EQ(dropped, samePlain);
+  // Every pair within 2.2 is listed once: count by brute force.
+  std::size_t brute = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j) {
+      const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+      brute += dx * dx + dy * dy + dz * dz < 2.2f * 2.2f ? 1 : 0;
+    }
+  EXPECT_EQ(plain.pairCount(), brute);
+}
+
 }  // namespace
 }  // namespace softsub::fluid
