@@ -246,3 +246,25 @@ TEST(FillMesh, DegenerateTrianglesAreSkippedWithoutCrashing) {
 
 }  // namespace
 }  // namespace softsub::geometry
+
+namespace softsub::geometry {
+namespace {
+
+TEST(LatticeShell, KeepsTheOuterLayersOfACube) {
+  std::vector<Vec3> cube;
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 6; ++x) cube.emplace_back(0.5 * x + 0.25, 0.5 * y - 3, 0.5 * z);
+  EXPECT_EQ(latticeShell(cube, 0.5, 1).size(), 216U - 64U);  // the 4^3 core goes
+  const std::vector<Vec3> two = latticeShell(cube, 0.5, 2);
+  EXPECT_EQ(two.size(), 216U - 8U);                          // the 2^3 core goes
+  for (const Vec3& p : two) {                                // and it is the core that went
+    const Vec3 k = (p - Vec3(0.25, -3, 0)) / 0.5;
+    const bool core = k.minCoeff() > 1.5 && k.maxCoeff() < 3.5;
+    EXPECT_FALSE(core) << p.transpose();
+  }
+  EXPECT_TRUE(latticeShell({}, 0.5, 2).empty());
+}
+
+}  // namespace
+}  // namespace softsub::geometry
