@@ -307,10 +307,11 @@ void RigidSolver::solvePositions(double dt) {
   }
 }
 
-void RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
+bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
                                std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
                                std::span<const float> materialRadius) {
   const std::uint32_t first = set.firstEntity;
+  bool pushedBody = false;
   for (const SlotPair& p : pairs) {
     std::uint32_t f = p[0], k = p[1];
     const bool fIsBody = s.owner[f] >= first, kIsBody = s.owner[k] >= first;
@@ -343,8 +344,10 @@ void RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& state
       vel_[b] += impulse * invMass_[b];
       states[b].angularMomentum += arm.cross(impulse);
       omega_[b] = invInertia_[b] * states[b].angularMomentum;
+      pushedBody = true;
     }
   }
+  return pushedBody;
 }
 
 void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
@@ -392,15 +395,16 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, Parti
     st.angularMomentum = invInertia_[b].isZero() ? Vec3::Zero().eval() : Vec3(invInertia_[b].inverse() * omega_[b]);
     integratePose(info, st, vel_[b] + pseudoVel_[b], omega_[b] + pseudoOmega_[b], dt);
   }
-  // New poses: body particles to their places, then fluid kept outside the bodies.
+  // New poses: body particles to their places (which also sets omega_ from the new
+  // pose), then fluid kept outside the bodies.
   writeParticles(set, states, s);
   for (std::size_t b = 0; b < nb; ++b) {
     if (!set.bodies[b].dynamic) continue;
     vel_[b] = states[b].velocity;
     invInertia_[b] = worldInverseInertia(set.bodies[b], states[b]);
-    omega_[b] = invInertia_[b] * states[b].angularMomentum;
   }
-  pushFluidOut(set, states, s, pairs, materialInverseMass, materialRadius);
+  if (!pushFluidOut(set, states, s, pairs, materialInverseMass, materialRadius)) return;
+  // Some body took an impulse from the fluid: its particles' velocities follow.
   for (std::size_t b = 0; b < nb; ++b)
     if (set.bodies[b].dynamic) states[b].velocity = vel_[b];
   writeParticles(set, states, s);

@@ -16,13 +16,13 @@
 namespace softsub::rigid {
 
 /// Axis-aligned container walls: planes at lo and hi on x and z, a floor at lo.y, a lid
-/// at hi.y when closed.
+/// at hi.y when closed (solver::Container).
 struct Walls {
   std::array<double, 3> lo{0, 0, 0};
   std::array<double, 3> hi{0, 0, 0};
-  bool closed = false;
-  double restitution = 0.5;  ///< the environment's NormalAttenuation
-  double friction = 0.1;     ///< the environment's TangentAttenuation
+  bool closed = false;      ///< lid at hi.y
+  double restitution = 0.5; ///< the environment's NormalAttenuation: normal velocity after contact = -restitution * before
+  double friction = 0.1;    ///< the environment's TangentAttenuation: impacts v_t *= (1 - friction); resting contact: Coulomb coefficient
 };
 
 /// Tuning of the contact solver (defaults are what scenes get).
@@ -86,7 +86,8 @@ class RigidSolver {
   void prepareContacts(double dt, const Vec3& gravity);
   void solveVelocities();
   void solvePositions(double dt);
-  void pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
+  /// True when a dynamic body took an impulse.
+  bool pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
                     std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
                     std::span<const float> materialRadius);
 

@@ -97,13 +97,13 @@ std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spa
   return points;
 }
 
+}  // namespace
+
 const PairDesc* findPair(const InteractionsDesc& in, const std::string& a, const std::string& b) {
   for (const PairDesc& p : in.pairs)
     if ((p.a == a && p.b == b) || (p.a == b && p.b == a)) return &p;
   return nullptr;
 }
-
-}  // namespace
 
 geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDir) {
   if (!o.geometry.empty()) return geometry::loadMesh(std::filesystem::path(baseDir) / o.geometry);

@@ -20,6 +20,10 @@ namespace softsub::scene {
 /// its scaled mesh.
 [[nodiscard]] double objectParticleSize(const ObjectDesc& object, const geometry::TriangleMesh& mesh);
 
+/// The `<Pair>` of names a and b (either order), or null.
+[[nodiscard]] const PairDesc* findPair(const InteractionsDesc& interactions, const std::string& a,
+                                       const std::string& b);
+
 /// Appends every object of `desc` as a rigid body to the model (after the fluids:
 /// materials, interaction rows with every fluid) and its particles and state to `state`.
 /// `meshes` receives each object's objectMesh, in scene order.

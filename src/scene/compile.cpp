@@ -29,12 +29,6 @@ forces::Interaction toInteraction(const InteractionDesc& d) {
   return {d.function, d.damping, d.relativeVelocity};
 }
 
-const PairDesc* findPair(const InteractionsDesc& in, const std::string& a, const std::string& b) {
-  for (const PairDesc& p : in.pairs)
-    if ((p.a == a && p.b == b) || (p.a == b && p.b == a)) return &p;
-  return nullptr;
-}
-
 }  // namespace
 
 Compiled compile(const SceneDesc& desc) {

@@ -11,6 +11,7 @@
 #include "core/particle_store.h"
 #include "forces/interaction_table.h"
 #include "rigid/body.h"
+#include "rigid/solver.h"
 
 namespace softsub::solver {
 
@@ -18,13 +19,8 @@ namespace softsub::solver {
 enum class Integrator : std::uint8_t { ExplicitEuler, SymplecticEuler, VelocityVerlet };
 
 /// The container: walls at lo/hi on x and z, a floor at lo.y, a lid at hi.y if closed.
-struct Container {
-  std::array<double, 3> lo{0, 0, 0};
-  std::array<double, 3> hi{0, 0, 0};
-  bool closed = false;      ///< lid at hi.y
-  double restitution = 0.5; ///< normal velocity after contact = -restitution * before
-  double friction = 0.1;    ///< impacts: v_t *= (1 - friction); resting contact: Coulomb coefficient
-};
+/// One definition for the fluid walls and the bodies' wall contacts.
+using Container = rigid::Walls;
 
 /// A fluid as the solver and the outputs see it.
 struct FluidInfo {

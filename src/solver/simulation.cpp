@@ -39,10 +39,6 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     }
     listOptions_.rowRadius = rowRadius_;
     listOptions_.exclusiveOwnersFrom = model_.bodies.firstEntity;
-    if (model_.container) {
-      const Container& box = *model_.container;
-      walls_ = rigid::Walls{box.lo, box.hi, box.closed, box.restitution, box.friction};
-    }
     // Body particles start where their bodies put them.
     rigid_.findBodySlots(model_.bodies, state_.particles);
     rigid_.writeParticles(model_.bodies, state_.bodies, state_.particles);
@@ -115,7 +111,7 @@ void Simulation::listRigidPairs() {
 void Simulation::stepBodies(double dt) {
   if (model_.bodies.empty()) return;
   rigid_.step(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
-              materialRadius_, walls_ ? &*walls_ : nullptr, model_.gravity, dt);
+              materialRadius_, model_.container ? &*model_.container : nullptr, model_.gravity, dt);
 }
 
 // v += (f / m + g) h for every particle.

@@ -1,7 +1,6 @@
 #pragma once
 /// The stepper: the seed's stages, in order, on (Model, State).
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,7 +68,6 @@ class Simulation {
   mutable std::vector<std::uint32_t> slotOfId_;
   // Rigid bodies.
   rigid::RigidSolver rigid_;
-  std::optional<rigid::Walls> walls_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
   std::vector<float> rowRadius_, materialInverseMass_, materialRadius_;
   fluid::ListOptions listOptions_;
