@@ -7,7 +7,11 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config  # compiler and build tools
   libeigen3-dev libpugixml-dev libfmt-dev libcli11-dev libassimp-dev  # libraries softsub links
+  libgl-dev libegl-dev libpng-dev libglfw3-dev libimgui-dev  # renderer and viewer
+  libegl-mesa0 libgl1-mesa-dri  # OpenGL without a GPU or display (Mesa's llvmpipe through EGL)
   googletest libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
+  xvfb xauth  # the viewer's test runs it in a virtual X display
+  ffmpeg  # 'softsub render --movie' (optional for users; tested)
 )
 
 missing=()

@@ -1,0 +1,35 @@
+#pragma once
+/// What the renderer draws besides the particles of a frame: the container, the floor,
+/// and the rigid bodies' meshes. Built once per scene (app/scene_view.cpp) and kept.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace softsub::render {
+
+/// A rigid body's triangles in its geometry's own axes; the frame's ObjectSnapshot of the
+/// same name places it (scale, rotation, translation).
+struct RenderMesh {
+  std::string name;
+  std::vector<std::array<float, 3>> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::array<float, 3> colour{0.72f, 0.74f, 0.78f};
+};
+
+/// The container box: walls at lo/hi on x and z, the floor at lo[1], a lid if closed.
+struct RenderContainer {
+  std::array<float, 3> lo{-10, 0, -10};
+  std::array<float, 3> hi{10, 20, 10};
+  bool closed = false;
+};
+
+/// Everything static the renderer needs.
+struct RenderScene {
+  std::optional<RenderContainer> container;  ///< absent: no walls, no floor
+  bool reflective = false;                   ///< mirror the scene in the floor
+  std::vector<RenderMesh> meshes;            ///< one per object, by name
+};
+
+}  // namespace softsub::render
