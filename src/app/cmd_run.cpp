@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cache/atomic_file.h"
 #include "cache/frame_writer.h"
 #include "cache/naming.h"
 #include "core/error.h"
@@ -19,6 +20,7 @@
 #include "scene/compile.h"
 #include "scene/schema.h"
 #include "scene_source.h"
+#include "scene_view.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
 #include "text_format.h"
@@ -26,6 +28,9 @@
 namespace softsub::app {
 
 namespace {
+
+constexpr int kPreviewWidth = 960;
+constexpr int kPreviewHeight = 540;
 
 constexpr const char* kSeedGroup = "Seed flags (also accepted with one dash, as in the seed)";
 
@@ -118,6 +123,8 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                   "Refuse scenes with more particles than this (default: the reader's limit)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--print-scene", o.printScene, "Print the embedded default scene and exit");
+  run->add_flag("--preview", o.preview,
+                "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed)");
   run->add_option("--record", o.record, "0: write nothing (same as --formats none); 1: write")
       ->check(CLI::Range(0, 1))
       ->group(kSeedGroup);
@@ -149,6 +156,8 @@ int runCommand(const RunOptions& o) {
     for (const scene::ObjectDesc& obj : loaded.desc.objects) cache::checkFileNamePart(obj.name, "Object/Name");
   scene::Compiled compiled = scene::compile(loaded.desc);
   std::vector<cache::ObjectMesh> meshes = objectMeshes(compiled, loaded.name);
+  std::optional<render::RenderScene> view;
+  if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
@@ -188,10 +197,24 @@ int runCommand(const RunOptions& o) {
                stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT", done.last, where);
     return static_cast<int>(ExitCode::Interrupted);
   }
+  std::string previewNote;
+  if (view) {
+    // The caches are complete whatever happens here: a system that cannot draw gets a
+    // warning, not a failed run.
+    const std::filesystem::path picture = outDir / (loaded.name + ".preview.png");
+    try {
+      cache::ensureDirectory(outDir);
+      PictureMaker maker(*view, kPreviewWidth, kPreviewHeight);
+      maker.write(picture, sim.snapshot(), cameraOf(loaded.desc.camera));
+      previewNote = ", preview: " + picture.string();
+    } catch (const IoError& e) {
+      fmt::print(stderr, "warning: no preview picture: {}\n", e.what());
+    }
+  }
   if (chatty)
-    fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}\n",
+    fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}{}\n",
                countOf(static_cast<std::uint64_t>(progress.framesDone()), "frame"),
-               countOf(particles, "particle"), seconds, progress.secondsPerFrame() * 1e3, where);
+               countOf(particles, "particle"), seconds, progress.secondsPerFrame() * 1e3, where, previewNote);
   return static_cast<int>(ExitCode::Ok);
 }
 

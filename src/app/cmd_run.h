@@ -25,6 +25,7 @@ struct RunOptions {
   int record = -1;                    ///< -record 0|1; 0 means --formats none
   std::int64_t stopRecordingAt = -1;  ///< -stopRecordingAt F; -1: no limit
   std::string drawPerFrame;           ///< -drawPerFrame X; accepted and ignored (viewer)
+  bool preview = false;               ///< --preview: a PNG of the last frame in the output folder
 };
 
 /// Adds the `run` subcommand bound to `options` and returns it.

@@ -11,6 +11,7 @@
 
 #include "cmd_fill.h"
 #include "cmd_info.h"
+#include "cmd_render.h"
 #include "cmd_run.h"
 #include "cmd_schema.h"
 #include "core/error.h"
@@ -34,10 +35,12 @@ int runApp(int argc, char** argv) {
   app::RunOptions runOptions;
   app::InfoOptions infoOptions;
   app::FillOptions fillOptions;
+  app::RenderOptions renderOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
   CLI::App* fill = app::addFillCommand(root, fillOptions);
   CLI::App* schema = app::addSchemaCommand(root);
+  CLI::App* render = app::addRenderCommand(root, renderOptions);
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
@@ -65,6 +68,7 @@ int runApp(int argc, char** argv) {
   if (info->parsed()) return app::infoCommand(infoOptions);
   if (fill->parsed()) return app::fillCommand(fillOptions);
   if (schema->parsed()) return app::schemaCommand();
+  if (render->parsed()) return app::renderCommand(renderOptions);
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }
 

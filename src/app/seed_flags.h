@@ -8,7 +8,7 @@
 namespace softsub::app {
 
 /// Names of softsub's subcommands (a first argument that is one of them is kept).
-inline constexpr const char* kSubcommands[] = {"run", "info", "schema"};
+inline constexpr const char* kSubcommands[] = {"run", "info", "schema", "fill", "render", "view"};
 
 /// Rewrites `args` (args[0] is the program) so that CLI11 can parse it:
 /// `-record V` -> `--record=V`, `-updateNum V` -> `--substeps=V`,

@@ -1,0 +1,247 @@
+#include "cmd_render.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cache/atomic_file.h"
+#include "cache/naming.h"
+#include "core/error.h"
+#include "progress.h"
+#include "render_playback.h"
+#include "scene/compile.h"
+#include "scene_source.h"
+#include "scene_view.h"
+#include "solver/frame_loop.h"
+#include "stop_signal.h"
+#include "text_format.h"
+
+extern char** environ;
+
+namespace softsub::app {
+
+namespace {
+
+std::optional<std::int64_t> parseFrameNumber(std::string_view s) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || v < 0) return std::nullopt;
+  return v;
+}
+
+constexpr int kMaxSide = 16384;
+
+/// Renders each frame it is given inside the range into `<out>/<scene>.NNNN.png`.
+class PictureObserver : public FrameObserver {
+ public:
+  PictureObserver(PictureMaker& maker, render::Camera camera, std::filesystem::path out, std::string scene,
+                  FrameRange range)
+      : maker_(maker), camera_(std::move(camera)), out_(std::move(out)), scene_(std::move(scene)), range_(range) {}
+  void onFrame(const FrameSnapshot& frame) override {
+    if (!range_.contains(frame.frame)) return;
+    maker_.write(picturePath(out_, scene_, frame.frame), frame, camera_);
+    if (first < 0) first = frame.frame;
+    last = frame.frame;
+    ++written;
+  }
+  std::int64_t first = -1, last = -1, written = 0;
+
+ private:
+  PictureMaker& maker_;
+  render::Camera camera_;
+  std::filesystem::path out_;
+  std::string scene_;
+  FrameRange range_;
+};
+
+void checkSize(const RenderOptions& o) {
+  for (const auto& [option, v] : {std::pair{"--width", o.width}, std::pair{"--height", o.height}})
+    if (v < 16 || v > kMaxSide)
+      throw InputError({"command line", 0, option}, fmt::format("{} pixels is out of range", v),
+                       fmt::format("an integer in [16, {}]", kMaxSide));
+  if (!o.movie.empty() && (o.width % 2 != 0 || o.height % 2 != 0))
+    throw InputError({"command line", 0, "--movie"},
+                     fmt::format("{}x{} cannot be encoded as H.264 4:2:0", o.width, o.height),
+                     "an even --width and --height");
+}
+
+}  // namespace
+
+std::filesystem::path picturePath(const std::filesystem::path& dir, std::string_view scene, std::int64_t frame) {
+  return dir / fmt::format("{}.{}.png", scene, cache::frameTag(frame));
+}
+
+FrameRange parseFrameRange(const std::string& text, const std::string& option) {
+  FrameRange r;
+  if (text.empty()) return r;
+  const std::string allowed = "a:b (first and last frame, inclusive), a: (from a), :b (up to b) or a (one frame), "
+                              "frame numbers >= 0";
+  const auto colon = text.find(':');
+  const std::string_view a = std::string_view(text).substr(0, colon);
+  const std::string_view b = colon == std::string::npos ? a : std::string_view(text).substr(colon + 1);
+  if (!a.empty()) {
+    const auto v = parseFrameNumber(a);
+    if (!v) throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
+    r.first = *v;
+  }
+  if (!b.empty()) {
+    const auto v = parseFrameNumber(b);
+    if (!v) throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
+    r.last = *v;
+  }
+  if (a.empty() && b.empty())
+    throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
+  if (r.last && *r.last < r.first)
+    throw InputError({"command line", 0, option}, fmt::format("'{}' ends before it starts", text), allowed);
+  return r;
+}
+
+std::string findFfmpeg() {
+  const char* path = std::getenv("PATH");
+  std::string_view rest = path ? path : "/usr/bin:/bin";
+  while (true) {
+    const auto colon = rest.find(':');
+    const std::filesystem::path dir(std::string(rest.substr(0, colon)));
+    const std::filesystem::path candidate = (dir.empty() ? std::filesystem::path(".") : dir) / "ffmpeg";
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    if (colon == std::string_view::npos) return {};
+    rest.remove_prefix(colon + 1);
+  }
+}
+
+void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie) {
+  const std::string ffmpeg = findFfmpeg();
+  if (ffmpeg.empty()) throw IoError("cannot write " + movie + ": ffmpeg is not installed (Debian: apt-get install ffmpeg)");
+  // Encoded next to the target, then renamed: a movie is complete or absent.
+  const std::filesystem::path target(movie);
+  const std::filesystem::path partial = target.parent_path() / ("." + target.filename().string() + ".part.mp4");
+  const std::vector<std::string> args = {ffmpeg, "-nostdin", "-y", "-loglevel", "error",
+                                         "-framerate", fmt::format("{:g}", fps), "-start_number",
+                                         std::to_string(firstFrame), "-i", pattern, "-c:v", "libx264",
+                                         "-pix_fmt", "yuv420p", "-movflags", "+faststart", partial.string()};
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, ffmpeg.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+    throw IoError("cannot write " + movie + ": cannot start " + ffmpeg);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw IoError(fmt::format("cannot write {}: ffmpeg failed (exit status {})", movie,
+                              WIFEXITED(status) ? WEXITSTATUS(status) : -1));
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, target, ec);
+  if (ec) throw IoError(fmt::format("cannot write {}: {}", movie, ec.message()));
+}
+
+CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
+  CLI::App* cmd = root.add_subcommand(
+      "render", "Draw a scene's frames (simulated on the way) or a recorded folder's frames into PNG pictures, "
+                "off-screen (no display or GPU needed)");
+  cmd->add_option("INPUT", o.input, ".scene file or recorded <scene>Sim folder (default: the embedded default scene)");
+  cmd->add_option("--out", o.out, "Folder for the pictures <scene>.NNNN.png")->required();
+  cmd->add_option("--width", o.width, "Picture width in pixels, 16 to 16384")->capture_default_str();
+  cmd->add_option("--height", o.height, "Picture height in pixels, 16 to 16384")->capture_default_str();
+  cmd->add_option("--frames", o.frames, "Frames to draw: a:b (inclusive), a:, :b or a (default: all)");
+  cmd->add_option("--movie", o.movie, "Also encode the pictures into this MP4 file (needs ffmpeg)");
+  cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps>")->check(CLI::Range(1, 100000));
+  cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  return cmd;
+}
+
+int renderCommand(const RenderOptions& o) {
+  checkSize(o);
+  const FrameRange range = parseFrameRange(o.frames, "--frames");
+  if (!o.movie.empty() && findFfmpeg().empty())
+    throw InputError({"command line", 0, "--movie"}, "ffmpeg is not installed", "install ffmpeg, or leave out --movie");
+  const bool chatty = stderrIsTerminal() && !o.quiet;
+  const std::filesystem::path out(o.out);
+
+  std::string sceneName;
+  double fps = 24;
+  std::unique_ptr<PictureMaker> maker;  // outlives the observer that draws with it
+  std::optional<PictureObserver> observer;
+  PictureObserver* pictures = nullptr;
+  std::error_code ec;
+  const bool recorded = !o.input.empty() && std::filesystem::is_directory(o.input, ec);
+  const auto start = std::chrono::steady_clock::now();
+  if (recorded) {
+    RecordedFrames rec = openRecorded(o.input);
+    sceneName = rec.sceneName;
+    fps = rec.framesPerSecond;
+    cache::ensureDirectory(out);
+    maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
+    observer.emplace(*maker, rec.camera, out, sceneName, range);
+    pictures = &*observer;
+    ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
+    for (std::size_t i = 0; i < rec.frameCount(); ++i) {
+      if (!range.contains(rec.frameNumber(i))) continue;
+      if (stopSignal() != 0) break;
+      pictures->onFrame(rec.load(i));
+      progress.update({rec.frameNumber(i), rec.frameNumber(rec.frameCount() - 1), 0, 0});
+    }
+    progress.end();
+  } else {
+    LoadedScene loaded = loadScene(o.input, o.maxParticles);
+    if (o.substeps) loaded.desc.simulation.substeps = static_cast<int>(*o.substeps);
+    sceneName = loaded.name;
+    fps = loaded.desc.simulation.framesPerSecond;
+    std::int64_t lastFrame = loaded.desc.simulation.frames;
+    if (range.last) lastFrame = std::min(lastFrame, *range.last);
+    if (range.first > loaded.desc.simulation.frames)
+      throw InputError({"command line", 0, "--frames"},
+                       fmt::format("frame {} is past the scene's last frame {}", range.first,
+                                   loaded.desc.simulation.frames),
+                       fmt::format("frames in [0, {}]", loaded.desc.simulation.frames));
+    scene::Compiled compiled = scene::compile(loaded.desc);
+    const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
+    const std::size_t particles = compiled.model.particleCount();
+    solver::Simulation sim(compiled.model, std::move(compiled.state));
+    cache::ensureDirectory(out);
+    maker = std::make_unique<PictureMaker>(view, o.width, o.height);
+    observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range);
+    pictures = &*observer;
+    FrameObserver* observers[] = {pictures};
+    ProgressLine progress(chatty, lastFrame, particles);
+    solver::FrameLoopHooks hooks;
+    hooks.stop = &installStopHandlers();
+    hooks.onProgress = [&](const solver::FrameProgress& p) { progress.update(p); };
+    const bool complete = solver::runFrames(sim, lastFrame, observers, hooks);
+    progress.end();
+    if (!complete) {
+      fmt::print(stderr, "interrupted: {} pictures written to {}\n", pictures->written, out.string());
+      return static_cast<int>(ExitCode::Interrupted);
+    }
+  }
+  if (pictures->written == 0)
+    throw InputError({"command line", 0, "--frames"}, fmt::format("no frame of {} is in '{}'", o.input, o.frames),
+                     "a range that holds at least one frame");
+  if (!o.movie.empty()) {
+    if (chatty) fmt::print(stderr, "encoding {} ...\n", o.movie);
+    encodeMovie((out / (sceneName + ".%04d.png")).string(), pictures->first, fps, o.movie);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (chatty)
+    fmt::print(stderr, "done: {} written to {} ({}x{}), {:.2f} s{}\n", countOf(static_cast<std::uint64_t>(pictures->written), "picture"),
+               out.string(), o.width, o.height, seconds, o.movie.empty() ? "" : ", movie: " + o.movie);
+  return static_cast<int>(ExitCode::Ok);
+}
+
+}  // namespace softsub::app

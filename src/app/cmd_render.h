@@ -1,0 +1,57 @@
+#pragma once
+/// `softsub render`: draw a scene's frames (simulated on the way) or a recorded folder's
+/// frames into PNG pictures off-screen, and an MP4 through ffmpeg when asked.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace CLI {
+class App;
+}
+
+namespace softsub::app {
+
+/// The options of `render`.
+struct RenderOptions {
+  std::string input;                      ///< .scene file or recorded folder; empty: the default scene
+  std::string out;                        ///< folder for the pictures (required)
+  int width = 1280;                       ///< picture width, pixels
+  int height = 720;                       ///< picture height, pixels
+  std::string frames;                     ///< "a:b" inclusive, "a:", ":b" or "a"; empty: all
+  std::string movie;                      ///< MP4 file to encode with ffmpeg; empty: none
+  std::optional<std::int64_t> substeps;   ///< overrides the scene's Substeps
+  std::uint64_t maxParticles = 0;         ///< as `run --max-particles`
+  bool quiet = false;                     ///< nothing on stderr but errors
+};
+
+/// An inclusive frame range; `last` unset means "to the end".
+struct FrameRange {
+  std::int64_t first = 0;
+  std::optional<std::int64_t> last;
+  [[nodiscard]] bool contains(std::int64_t f) const { return f >= first && (!last || f <= *last); }
+};
+
+/// Parses `--frames`: "a:b", "a:", ":b", "a" (one frame) or empty (all). InputError
+/// naming `option` otherwise (negative numbers, b < a, junk).
+[[nodiscard]] FrameRange parseFrameRange(const std::string& text, const std::string& option);
+
+/// `<dir>/<scene>.NNNN.png`: the picture of one frame.
+[[nodiscard]] std::filesystem::path picturePath(const std::filesystem::path& dir, std::string_view scene,
+                                                std::int64_t frame);
+
+/// Adds the `render` subcommand bound to `options` and returns it.
+CLI::App* addRenderCommand(CLI::App& root, RenderOptions& options);
+
+/// Runs it; returns the exit code, throws InputError, IoError or BlowUpError.
+int renderCommand(const RenderOptions& options);
+
+/// Encodes `<dir>/<stem>.%04d.png` from `firstFrame` at `fps` into `movie` with ffmpeg
+/// (H.264, yuv420p). IoError when ffmpeg is missing or fails.
+void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie);
+
+/// The path of ffmpeg on PATH, or empty.
+[[nodiscard]] std::string findFfmpeg();
+
+}  // namespace softsub::app

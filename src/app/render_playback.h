@@ -1,0 +1,43 @@
+#pragma once
+/// A recorded `<scene>Sim/` folder as the renderer and the viewer play it back: its
+/// frames, and the container, meshes and camera to draw them with.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/snapshot.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+
+namespace softsub::session {
+class Playback;
+}
+
+namespace softsub::app {
+
+/// Frames of a recorded folder plus what draws them.
+class RecordedFrames {
+ public:
+  /// Opens `folder`; InputError/IoError when it holds no readable frames.
+  explicit RecordedFrames(const std::string& folder);
+  ~RecordedFrames();
+  RecordedFrames(RecordedFrames&&) noexcept;
+
+  [[nodiscard]] std::size_t frameCount() const;
+  [[nodiscard]] std::int64_t frameNumber(std::size_t index) const;
+  /// The frame at `index` (colours and sizes from the scene file beside the folder).
+  [[nodiscard]] FrameSnapshot load(std::size_t index) const;
+
+  std::string sceneName;            ///< names the pictures
+  double framesPerSecond = 24;      ///< from the scene beside the folder, else 24
+  render::RenderScene scene;        ///< container (from the scene beside) and meshes
+  render::Camera camera;            ///< the scene's camera, else one that frames frame 0
+
+ private:
+  std::unique_ptr<session::Playback> playback_;
+};
+
+/// Opens a recorded folder (see RecordedFrames).
+[[nodiscard]] inline RecordedFrames openRecorded(const std::string& folder) { return RecordedFrames(folder); }
+
+}  // namespace softsub::app
