@@ -1,0 +1,155 @@
+#include "session/playback.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <system_error>
+#include <utility>
+
+#include "cache/atomic_file.h"
+#include "cache/sim_format.h"
+#include "core/error.h"
+#include "scene/reader.h"
+
+namespace softsub::session {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kExpected = "a folder of <scene>.NNNN.sim frames, as 'softsub run' writes (<scene>Sim/)";
+
+/// A frame file name `<stem>.<digits>.sim`, split.
+struct FrameName {
+  std::string stem;
+  std::int64_t frame = 0;
+};
+
+std::optional<FrameName> parseFrameName(const std::string& name) {
+  constexpr std::string_view ext = ".sim";
+  if (name.size() <= ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0) return std::nullopt;
+  const std::string_view base(name.data(), name.size() - ext.size());
+  const std::size_t dot = base.rfind('.');
+  if (dot == std::string_view::npos || dot == 0 || dot + 1 == base.size()) return std::nullopt;
+  const std::string_view digits = base.substr(dot + 1);
+  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+  FrameName out;
+  const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out.frame);
+  if (ec != std::errc{} || ptr != digits.data() + digits.size()) return std::nullopt;
+  out.stem = std::string(base.substr(0, dot));
+  return out;
+}
+
+/// A mesh file name from a `.sim` file: relative, inside the folder.
+void checkMeshName(const std::string& filename, const fs::path& simFile) {
+  const fs::path p(filename);
+  bool inside = !filename.empty() && p.is_relative() && !p.has_root_name();
+  for (const fs::path& part : p)
+    if (part == "..") inside = false;
+  if (!inside)
+    throw InputError({simFile.string(), 0, "Object/Filename"},
+                     fmt::format("mesh file '{}' is not inside the recorded folder", filename),
+                     "a path relative to the folder, without '..' (<scene>Geo/<name>.obj)");
+}
+
+}  // namespace
+
+Playback::Playback(const fs::path& path) {
+  std::error_code ec;
+  fs::path folder = path.lexically_normal();
+  if (folder.filename().empty() && folder.has_parent_path()) folder = folder.parent_path();
+  std::string wanted;  // the scene whose frames to play, when known
+  if (fs::is_regular_file(folder, ec)) {
+    const std::optional<FrameName> name = parseFrameName(folder.filename().string());
+    if (!name) throw InputError({path.string(), 0, "file"}, "is not a recorded frame", kExpected);
+    wanted = name->stem;
+    folder = folder.has_parent_path() ? folder.parent_path() : fs::path(".");
+  } else if (!fs::is_directory(folder, ec)) {
+    throw IoError(fmt::format("cannot open recorded frames '{}': no such folder", path.string()));
+  }
+  folder_ = folder;
+
+  // Every frame file, by scene.
+  std::map<std::string, std::vector<std::pair<std::int64_t, fs::path>>> byScene;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::optional<FrameName> name = parseFrameName(it->path().filename().string());
+    if (!name || !it->is_regular_file(ec)) continue;
+    byScene[name->stem].emplace_back(name->frame, it->path());
+  }
+  if (ec) throw IoError(fmt::format("cannot read folder '{}': {}", folder.string(), ec.message()));
+  if (byScene.empty())
+    throw InputError({folder.string(), 0, "folder"}, "holds no recorded frames (no <scene>.NNNN.sim file)",
+                     kExpected);
+  if (wanted.empty()) {
+    const fs::path absolute = fs::absolute(folder, ec).lexically_normal();
+    std::string folderName = (absolute.filename().empty() ? absolute.parent_path() : absolute).filename().string();
+    if (folderName.size() > 3 && folderName.ends_with("Sim")) folderName.resize(folderName.size() - 3);
+    if (byScene.count(folderName) != 0) {
+      wanted = folderName;
+    } else {
+      std::size_t most = 0;
+      for (const auto& [stem, frames] : byScene)
+        if (frames.size() > most) {  // ties: the first in name order
+          most = frames.size();
+          wanted = stem;
+        }
+    }
+  }
+  sceneName_ = wanted;
+  auto& frames = byScene.at(wanted);
+  std::sort(frames.begin(), frames.end());
+  for (const auto& [number, file] : frames) {
+    if (!numbers_.empty() && numbers_.back() == number) continue;  // "7" and "0007": the first
+    numbers_.push_back(number);
+    frames_.push_back(file);
+  }
+
+  // The scene file beside the folder: colours, sizes, frame rate, camera, container.
+  const fs::path absolute = fs::absolute(folder_, ec).lexically_normal();
+  const fs::path sceneFile = (absolute.filename().empty() ? absolute.parent_path() : absolute).parent_path() /
+                             (sceneName_ + ".scene");
+  if (fs::is_regular_file(sceneFile, ec)) {
+    try {
+      scene_ = scene::readSceneFile(sceneFile.string());
+      fps_ = scene_->simulation.framesPerSecond;
+    } catch (const std::exception& e) {  // InputError, IoError: play without it
+      sceneNote_ = fmt::format("scene file not used: {}", e.what());
+    }
+  }
+
+  const FrameSnapshot first = cache::readSimFile(frames_.front()).frame;
+  if (!scene_) {
+    // No scene: the rate the frames' own times imply.
+    FrameSnapshot probe;
+    if (first.frame > 0 && first.time > 0) {
+      fps_ = static_cast<double>(first.frame) / first.time;
+    } else if (frames_.size() > 1) {
+      probe = cache::readSimFile(frames_[1]).frame;
+      if (probe.frame > 0 && probe.time > 0) fps_ = static_cast<double>(probe.frame) / probe.time;
+    }
+  }
+  for (const ObjectSnapshot& o : first.objects) {
+    checkMeshName(o.filename, frames_.front());
+    const fs::path file = folder_ / o.filename;
+    meshes_.push_back(cache::decodeObj(cache::readFileBytes(file), file.string()));
+    meshes_.back().name = o.name;
+  }
+}
+
+FrameSnapshot Playback::load(std::size_t index) const {
+  FrameSnapshot frame = cache::readSimFile(frames_.at(index)).frame;
+  frame.framesPerSecond = fps_;
+  if (scene_)
+    for (FluidSnapshot& f : frame.fluids)
+      for (const scene::FluidDesc& d : scene_->fluids)
+        if (d.name == f.name) {
+          f.colour = {static_cast<float>(d.colour.x()), static_cast<float>(d.colour.y()),
+                      static_cast<float>(d.colour.z())};
+          f.particleSize = static_cast<float>(d.params.particleSize);
+        }
+  return frame;
+}
+
+}  // namespace softsub::session
