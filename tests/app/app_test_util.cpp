@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -32,13 +33,32 @@ std::string quote(const fs::path& p) {
 }
 
 RunResult runSoftsub(const std::string& args, const fs::path& cwd) {
+  return runCommand(quote(SOFTSUB_BINARY) + " " + args, cwd);
+}
+
+fs::path softsubBinary() { return SOFTSUB_BINARY; }
+
+std::string findProgram(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string_view rest = path ? path : "/usr/bin:/bin";
+  for (;;) {
+    const auto colon = rest.find(':');
+    const fs::path dir(std::string(rest.substr(0, colon)));
+    const fs::path candidate = (dir.empty() ? fs::path(".") : dir) / program;
+    if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return candidate.string();
+    if (colon == std::string_view::npos) return {};
+    rest.remove_prefix(colon + 1);
+  }
+}
+
+RunResult runCommand(const std::string& commandLine, const fs::path& cwd) {
   static std::atomic<int> counter{0};
   const fs::path base = fs::temp_directory_path() /
                         ("softsub-test-io-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   const fs::path outFile = base.string() + ".out";
   const fs::path errFile = base.string() + ".err";
-  const std::string cmd = "cd " + quote(cwd) + " && " + quote(SOFTSUB_BINARY) + " " + args + " >" +
-                          quote(outFile) + " 2>" + quote(errFile) + " </dev/null";
+  const std::string cmd = "cd " + quote(cwd) + " && " + commandLine + " >" + quote(outFile) + " 2>" +
+                          quote(errFile) + " </dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
   if (status == -1) throw std::runtime_error("could not run: " + cmd);

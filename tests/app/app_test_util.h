@@ -26,6 +26,17 @@ RunResult runSoftsub(const std::string& args, const fs::path& cwd);
 /// holds it and `err` is empty. Fails the test on timeout (60 s, the child is killed).
 RunResult runSoftsubInTerminal(const std::string& args, const fs::path& cwd);
 
+/// Runs an arbitrary shell command line (words already quoted) in `cwd`, capturing
+/// stdout and stderr to files; stdin is /dev/null. For programs that wrap softsub
+/// (xvfb-run) or for other tools.
+RunResult runCommand(const std::string& commandLine, const fs::path& cwd);
+
+/// The full path of `program` found on PATH (an executable file), or empty.
+std::string findProgram(const std::string& program);
+
+/// The softsub binary under test.
+fs::path softsubBinary();
+
 /// Single-quotes `s` for the shell.
 std::string quote(const fs::path& s);
 
