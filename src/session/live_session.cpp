@@ -77,7 +77,7 @@ LiveSession::LiveSession(scene::SceneDesc desc, std::string sceneName, std::file
   validate(applied_);
   edited_ = applied_;
   wantRecording_ = recording_ = formats_.sim || formats_.pdc || formats_.ply;
-  start();
+  start(scene::compile(applied_));
 }
 
 LiveSession::~LiveSession() {
@@ -97,8 +97,7 @@ void LiveSession::validate(const scene::SceneDesc& desc) const {
   }
 }
 
-void LiveSession::start() {
-  scene::Compiled compiled = scene::compile(applied_);
+void LiveSession::start(scene::Compiled compiled) {
   std::vector<cache::ObjectMesh> cacheMeshes = objectMeshesForCache(compiled.model, compiled.objectMeshes, sceneName_);
   auto model = std::make_unique<solver::Model>(std::move(compiled.model));
   auto sim = std::make_unique<solver::Simulation>(*model, std::move(compiled.state));
@@ -117,7 +116,7 @@ void LiveSession::start() {
   record();
 }
 
-void LiveSession::restart() { start(); }
+void LiveSession::restart() { start(scene::compile(applied_)); }
 
 EditResult LiveSession::applyEdits() {
   scene::Compiled compiled;
@@ -131,7 +130,7 @@ EditResult LiveSession::applyEdits() {
   const bool restart = blownUp_ || !sameParticles(applied_, edited_) || !sameLayout(*model_, compiled.model);
   applied_ = edited_;
   if (restart) {
-    start();
+    start(std::move(compiled));
     return EditResult::Restarted;
   }
   std::vector<cache::ObjectMesh> cacheMeshes = objectMeshesForCache(compiled.model, compiled.objectMeshes, sceneName_);

@@ -16,6 +16,7 @@
 #include "cache/obj_format.h"
 #include "core/snapshot.h"
 #include "geometry/triangle_mesh.h"
+#include "scene/compile.h"
 #include "scene/scene_desc.h"
 #include "solver/model.h"
 #include "solver/simulation.h"
@@ -132,7 +133,7 @@ class LiveSession {
 
  private:
   void validate(const scene::SceneDesc& desc) const;
-  void start();  // compile applied_, frame 0
+  void start(scene::Compiled compiled);  // frame 0 of compiled (applied_'s)
   void record();
   void refreshSnapshot();
 
