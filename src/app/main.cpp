@@ -14,6 +14,7 @@
 #include "cmd_render.h"
 #include "cmd_run.h"
 #include "cmd_schema.h"
+#include "cmd_view.h"
 #include "core/error.h"
 #include "seed_flags.h"
 
@@ -36,11 +37,13 @@ int runApp(int argc, char** argv) {
   app::InfoOptions infoOptions;
   app::FillOptions fillOptions;
   app::RenderOptions renderOptions;
+  app::ViewOptions viewOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
   CLI::App* fill = app::addFillCommand(root, fillOptions);
   CLI::App* schema = app::addSchemaCommand(root);
   CLI::App* render = app::addRenderCommand(root, renderOptions);
+  CLI::App* view = app::addViewCommand(root, viewOptions);
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
@@ -69,6 +72,7 @@ int runApp(int argc, char** argv) {
   if (fill->parsed()) return app::fillCommand(fillOptions);
   if (schema->parsed()) return app::schemaCommand();
   if (render->parsed()) return app::renderCommand(renderOptions);
+  if (view->parsed()) return app::viewCommand(viewOptions);
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }
 

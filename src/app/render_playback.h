@@ -27,6 +27,8 @@ class RecordedFrames {
   [[nodiscard]] std::int64_t frameNumber(std::size_t index) const;
   /// The frame at `index` (colours and sizes from the scene file beside the folder).
   [[nodiscard]] FrameSnapshot load(std::size_t index) const;
+  /// Why the scene file beside the folder was not used (it is invalid), or "".
+  [[nodiscard]] const std::string& sceneNote() const;
 
   std::string sceneName;            ///< names the pictures
   double framesPerSecond = 24;      ///< from the scene beside the folder, else 24

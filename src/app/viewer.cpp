@@ -1,0 +1,379 @@
+#include "viewer.h"
+
+#include <algorithm>
+#include <cmath>
+
+// OpenGL's prototypes first; GLFW must not pull in its own gl.h.
+#include "render/gl.h"
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "cache/atomic_file.h"
+#include "cache/frame_writer.h"
+#include "core/error.h"
+#include "render/offscreen.h"
+#include "render/renderer.h"
+#include "render_playback.h"
+#include "scene/compile.h"
+#include "scene_source.h"
+#include "scene_view.h"
+#include "session/live_session.h"
+#include "session/parameters.h"
+
+namespace softsub::app {
+
+namespace {
+
+std::string glfwFailure;  // the last GLFW error, for the message when a window fails
+
+void onGlfwError(int code, const char* text) { glfwFailure = fmt::format("{} (GLFW error 0x{:x})", text, code); }
+
+Viewer* viewerOf(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+
+/// The scale of the scene: how far one arrow-key press moves the camera.
+double stepLength(const Aabb& box) {
+  if (box.empty()) return 0.5;
+  const double d = std::hypot(box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]);
+  return std::max(0.02 * d, 1e-3);
+}
+
+Vec3 pivotOf(const Aabb& box, const render::Camera& camera) {
+  if (box.empty()) return camera.eye + camera.forward() * 10.0;
+  return {0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2])};
+}
+
+int keyOf(const std::string& name) {
+  static const std::pair<const char*, int> keys[] = {
+      {"R", GLFW_KEY_R},       {"S", GLFW_KEY_S},         {"N", GLFW_KEY_N},       {"SPACE", GLFW_KEY_SPACE},
+      {"UP", GLFW_KEY_UP},     {"DOWN", GLFW_KEY_DOWN},   {"LEFT", GLFW_KEY_LEFT}, {"RIGHT", GLFW_KEY_RIGHT},
+      {"H", GLFW_KEY_H},       {"P", GLFW_KEY_P},         {"C", GLFW_KEY_C},       {"ESCAPE", GLFW_KEY_ESCAPE}};
+  for (const auto& [n, k] : keys)
+    if (name == n) return k;
+  return GLFW_KEY_UNKNOWN;
+}
+
+}  // namespace
+
+Viewer::Viewer(const ViewOptions& options) : options_(options) {
+  paused_ = options.paused;
+  if (!options.script.empty()) {
+    const std::vector<session::ScriptCommand> commands = session::readScriptFile(options.script);
+    script_.assign(commands.begin(), commands.end());
+  }
+  std::error_code ec;
+  if (!options.input.empty() && std::filesystem::is_directory(options.input, ec)) {
+    recorded_ = std::make_unique<RecordedFrames>(options.input);
+    sceneName_ = recorded_->sceneName;
+    renderScene_ = recorded_->scene;
+    startCamera_ = recorded_->camera;
+    playFrame_ = recorded_->load(0);
+  } else {
+    LoadedScene loaded = loadScene(options.input, options.maxParticles);
+    if (options.substeps) loaded.desc.simulation.substeps = static_cast<int>(*options.substeps);
+    sceneName_ = loaded.name;
+    const std::filesystem::path outDir = options.out.empty() ? loaded.defaultOutDir : std::filesystem::path(options.out);
+    session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir);
+    session_->setRecording(options.record != 0);
+    if (options.stopRecordingAt >= 0) session_->setStopRecordingAt(options.stopRecordingAt);
+    renderScene_ = renderSceneOf(session_->desc(), session_->objectMeshes());
+    startCamera_ = cameraOf(session_->desc().camera);
+    const std::string save = (std::filesystem::path(loaded.defaultOutDir).parent_path() / (loaded.name + "-tweaked.scene")).string();
+    std::snprintf(savePath_, sizeof savePath_, "%s", save.c_str());
+    refreshStability();
+  }
+  camera_ = startCamera_;
+}
+
+Viewer::~Viewer() {
+  if (imguiReady_) {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  renderer_.reset();  // its GL objects go with the context still current
+  if (window_ != nullptr) glfwDestroyWindow(window_);
+  glfwTerminate();
+}
+
+const FrameSnapshot& Viewer::frame() const { return live() ? session_->snapshot() : playFrame_; }
+
+void Viewer::openWindow() {
+  glfwSetErrorCallback(onGlfwError);
+  if (glfwInit() == GLFW_FALSE)
+    throw IoError(fmt::format("cannot open a window: {}; without a display use 'softsub render' (off-screen), "
+                              "or run the viewer under xvfb-run",
+                              glfwFailure.empty() ? "no display" : glfwFailure));
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  glfwWindowHint(GLFW_STENCIL_BITS, 8);
+  glfwWindowHint(GLFW_DEPTH_BITS, 24);
+  const std::string title = fmt::format("softsub view: {}", sceneName_);
+  window_ = glfwCreateWindow(options_.width, options_.height, title.c_str(), nullptr, nullptr);
+  if (window_ == nullptr)
+    throw IoError(fmt::format("cannot open an OpenGL 3.3 window: {}", glfwFailure.empty() ? "unknown reason" : glfwFailure));
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+  glfwSetWindowUserPointer(window_, this);
+  // Ours first: ImGui's backend chains to callbacks installed before it.
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (!ImGui::GetIO().WantCaptureKeyboard) viewerOf(w)->onKey(key, action, mods);
+  });
+  glfwSetScrollCallback(window_, [](GLFWwindow* w, double, double dy) {
+    if (!ImGui::GetIO().WantCaptureMouse) viewerOf(w)->onScroll(dy);
+  });
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini dropped in the user's folder
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  imguiReady_ = true;
+  renderer_ = std::make_unique<render::Renderer>();
+  renderer_->setScene(renderScene_);
+}
+
+void Viewer::setMessage(std::string text, bool error) {
+  message_ = std::move(text);
+  messageIsError_ = error;
+  if (error || !options_.script.empty()) fmt::print(stderr, "{}{}\n", error ? "error: " : "view: ", message_);
+}
+
+void Viewer::onKey(int key, int action, int /*mods*/) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  const Aabb box = renderer_ ? renderer_->bounds() : Aabb{};
+  switch (key) {
+    case GLFW_KEY_UP: camera_.moveForward(stepLength(box)); break;
+    case GLFW_KEY_DOWN: camera_.moveForward(-stepLength(box)); break;
+    case GLFW_KEY_LEFT: camera_.turn(3); break;
+    case GLFW_KEY_RIGHT: camera_.turn(-3); break;
+    default: break;
+  }
+  if (action != GLFW_PRESS) return;
+  switch (key) {
+    case GLFW_KEY_R: restart(); break;
+    case GLFW_KEY_S: writeCaches(); break;
+    case GLFW_KEY_SPACE: paused_ = !paused_; break;
+    case GLFW_KEY_N: stepOnce_ = true; paused_ = true; break;
+    case GLFW_KEY_H:
+    case GLFW_KEY_F1: showHelp_ = !showHelp_; break;
+    case GLFW_KEY_C: camera_ = startCamera_; break;
+    case GLFW_KEY_P:
+      screenshot(std::filesystem::path(fmt::format("{}.screenshot.{:04d}.png", sceneName_, frame().frame)));
+      break;
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q: quit_ = true; break;
+    default: break;
+  }
+}
+
+void Viewer::onScroll(double dy) {
+  const Aabb box = renderer_ ? renderer_->bounds() : Aabb{};
+  camera_.zoom(std::pow(0.9, dy), pivotOf(box, camera_));
+}
+
+void Viewer::handleInput() {
+  const ImGuiIO& io = ImGui::GetIO();
+  double x = 0, y = 0;
+  glfwGetCursorPos(window_, &x, &y);
+  const bool down = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  if (down && !dragging_ && !io.WantCaptureMouse) {
+    dragging_ = true;
+  } else if (!down) {
+    dragging_ = false;
+  } else if (dragging_) {
+    const Aabb box = renderer_->bounds();
+    camera_.orbit(-0.3 * (x - lastX_), -0.3 * (y - lastY_), pivotOf(box, camera_));
+  }
+  lastX_ = x;
+  lastY_ = y;
+}
+
+void Viewer::advance() {
+  if (live()) {
+    try {
+      session_->advanceFrame();
+    } catch (const BlowUpError& e) {
+      paused_ = true;
+      setMessage(fmt::format("{} (paused: lower the forces or raise Substeps, then press R)", e.what()), true);
+      if (!options_.script.empty()) {
+        exitCode_ = static_cast<int>(ExitCode::BlowUp);
+        quit_ = true;
+      }
+    }
+    return;
+  }
+  if (playIndex_ + 1 < recorded_->frameCount()) {
+    ++playIndex_;
+    playFrame_ = recorded_->load(playIndex_);
+  } else {
+    paused_ = true;  // the end of the recording
+  }
+}
+
+void Viewer::restart() {
+  if (live()) {
+    session_->restart();
+    setMessage(fmt::format("restarted at frame 0"));
+  } else {
+    playIndex_ = 0;
+    playFrame_ = recorded_->load(0);
+  }
+}
+
+void Viewer::stepFrame() { advance(); }
+
+void Viewer::writeCaches() {
+  if (!live()) {
+    setMessage("S writes a live simulation's frames; this is a recording already", true);
+    return;
+  }
+  try {
+    const auto written = session_->writeRecorded();
+    setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
+  } catch (const IoError& e) {
+    setMessage(e.what(), true);
+  }
+}
+
+void Viewer::saveScene(const std::filesystem::path& path) {
+  if (!live()) {
+    setMessage("only a live simulation has a scene to save", true);
+    return;
+  }
+  try {
+    session_->saveScene(path);
+    setMessage(fmt::format("saved {}", path.string()));
+  } catch (const IoError& e) {
+    setMessage(e.what(), true);
+  }
+}
+
+void Viewer::screenshot(const std::filesystem::path& path) {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  try {
+    cache::writeFileAtomic(path, render::encodePng(render::readPixels(w, h)));
+    setMessage(fmt::format("screenshot {}", path.string()));
+  } catch (const IoError& e) {
+    setMessage(e.what(), true);
+  }
+}
+
+void Viewer::runScript() {
+  if (waitDraws_ > 0) {
+    --waitDraws_;
+    return;
+  }
+  if (waitFrames_ > 0) {
+    --waitFrames_;
+    advance();
+    return;
+  }
+  while (!script_.empty() && !quit_) {
+    const session::ScriptCommand c = script_.front();
+    script_.pop_front();
+    try {
+      switch (c.kind) {
+        case session::ScriptCommandKind::SetFluid:
+        case session::ScriptCommandKind::SetSimulation:
+          if (!live())
+            throw InputError({options_.script, c.line, "set"}, "a recording has no parameters to set",
+                             "set commands with a .scene input");
+          session::applySetCommand(c, session_->editableDesc(), options_.script);
+          applyEdits();
+          break;
+        case session::ScriptCommandKind::Key: {
+          const int key = keyOf(c.args.at(0));
+          onKey(key, GLFW_PRESS, 0);
+          if (key == GLFW_KEY_N) {  // a step key takes effect in the loop: let it happen
+            return;
+          }
+          break;
+        }
+        case session::ScriptCommandKind::Frames:
+          waitFrames_ = session::scriptCount(c);
+          if (waitFrames_ > 0) {
+            --waitFrames_;
+            advance();
+          }
+          return;
+        case session::ScriptCommandKind::Wait:
+          waitDraws_ = static_cast<int>(session::scriptCount(c));
+          return;
+        case session::ScriptCommandKind::Save: saveScene(c.args.at(0)); break;
+        case session::ScriptCommandKind::Screenshot:
+          pendingShot_ = std::filesystem::path(c.args.at(0));
+          return;  // taken after this UI frame is drawn
+        case session::ScriptCommandKind::Quit: quit_ = true; return;
+      }
+    } catch (const InputError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode_ = static_cast<int>(ExitCode::BadInput);
+      quit_ = true;
+      return;
+    }
+    if (messageIsError_ && !message_.empty()) {
+      // A scripted action that failed (an edit refused, a file not written) ends the run.
+      exitCode_ = static_cast<int>(ExitCode::BadInput);
+      quit_ = true;
+      return;
+    }
+  }
+}
+
+int Viewer::run() {
+  openWindow();
+  lastUiFrame_ = std::chrono::steady_clock::now();
+  while (!glfwWindowShouldClose(window_) && !quit_) {
+    glfwPollEvents();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handleInput();
+
+    const bool scripted = !script_.empty() || waitDraws_ > 0 || waitFrames_ > 0;
+    if (scripted) {
+      runScript();
+    } else if (!paused_ || stepOnce_) {
+      advance();
+    }
+    stepOnce_ = false;
+    if (editsPending_) applyEdits();
+
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    if (w > 0 && h > 0) {
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      renderer_->draw(frame(), camera_, w, h);
+    }
+    drawPanels();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (pendingShot_) {
+      screenshot(*pendingShot_);
+      pendingShot_.reset();
+      if (messageIsError_ && !options_.script.empty()) {
+        exitCode_ = static_cast<int>(ExitCode::IoFailure);
+        quit_ = true;
+      }
+    }
+    glfwSwapBuffers(window_);
+
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - lastUiFrame_).count();
+    lastUiFrame_ = now;
+    if (dt > 0) uiFps_ = uiFps_ == 0 ? 1 / dt : 0.9 * uiFps_ + 0.1 / dt;
+  }
+  return exitCode_;
+}
+
+}  // namespace softsub::app
