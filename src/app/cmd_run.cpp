@@ -20,6 +20,7 @@
 #include "scene/compile.h"
 #include "scene/schema.h"
 #include "scene_source.h"
+#include "session/object_meshes.h"
 #include "scene_view.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
@@ -80,22 +81,6 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
 
 bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply; }
 
-/// Points every body's `.sim` Filename at `<scene>Geo/<name>.obj` and returns the meshes
-/// to write there.
-std::vector<cache::ObjectMesh> objectMeshes(scene::Compiled& compiled, const std::string& sceneName) {
-  std::vector<cache::ObjectMesh> out;
-  auto& bodies = compiled.model.bodies.bodies;
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    bodies[b].geometryFile = cache::geometryFileName(sceneName, bodies[b].name);
-    const geometry::TriangleMesh& m = compiled.objectMeshes.at(b);
-    cache::ObjectMesh& mesh = out.emplace_back();
-    mesh.name = bodies[b].name;
-    for (const Vec3& v : m.vertices) mesh.vertices.push_back({v.x(), v.y(), v.z()});
-    mesh.triangles.assign(m.triangles.begin(), m.triangles.end());
-  }
-  return out;
-}
-
 std::string folderText(const std::filesystem::path& dir) {
   std::string s = dir.generic_string();
   if (s.empty()) s = ".";
@@ -155,7 +140,7 @@ int runCommand(const RunOptions& o) {
   if (formats.sim)
     for (const scene::ObjectDesc& obj : loaded.desc.objects) cache::checkFileNamePart(obj.name, "Object/Name");
   scene::Compiled compiled = scene::compile(loaded.desc);
-  std::vector<cache::ObjectMesh> meshes = objectMeshes(compiled, loaded.name);
+  std::vector<cache::ObjectMesh> meshes = session::objectMeshesForCache(compiled.model, compiled.objectMeshes, loaded.name);
   std::optional<render::RenderScene> view;
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();

@@ -195,10 +195,11 @@ void Viewer::handleInput() {
   lastY_ = y;
 }
 
-void Viewer::advance() {
+void Viewer::advance(bool wholeFrame) {
   if (live()) {
     try {
-      session_->advanceFrame();
+      if (wholeFrame) session_->advanceFrame();
+      else session_->advanceSubstep();
     } catch (const BlowUpError& e) {
       paused_ = true;
       setMessage(fmt::format("{} (paused: lower the forces or raise Substeps, then press R)", e.what()), true);
@@ -227,7 +228,6 @@ void Viewer::restart() {
   }
 }
 
-void Viewer::stepFrame() { advance(); }
 
 void Viewer::writeCaches() {
   if (!live()) {
@@ -275,7 +275,7 @@ void Viewer::runScript() {
   }
   if (waitFrames_ > 0) {
     --waitFrames_;
-    advance();
+    advance(true);
     return;
   }
   while (!script_.empty() && !quit_) {
@@ -303,7 +303,7 @@ void Viewer::runScript() {
           waitFrames_ = session::scriptCount(c);
           if (waitFrames_ > 0) {
             --waitFrames_;
-            advance();
+            advance(true);
           }
           return;
         case session::ScriptCommandKind::Wait:
@@ -343,11 +343,17 @@ int Viewer::run() {
     const bool scripted = !script_.empty() || waitDraws_ > 0 || waitFrames_ > 0;
     if (scripted) {
       runScript();
-    } else if (!paused_ || stepOnce_) {
-      advance();
+    } else if (stepOnce_) {
+      advance(true);
+    } else if (!paused_) {
+      advance(options_.drawPerFrame != 0);  // the seed's -drawPerFrame 0 draws every update
     }
     stepOnce_ = false;
-    if (editsPending_) applyEdits();
+    // A drag applies its edits a few times a second and once more on release: each apply
+    // validates and recompiles the whole scene, which is quick but not free.
+    if (editsPending_ && (!ImGui::IsAnyItemActive() ||
+                          std::chrono::steady_clock::now() - lastApply_ > std::chrono::milliseconds(250)))
+      applyEdits();
 
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);

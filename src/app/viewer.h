@@ -46,9 +46,8 @@ class Viewer {
   void handleInput();
   void onKey(int key, int action, int mods);
   void onScroll(double dy);
-  void advance();                 // one frame (live) or the next recorded frame
+  void advance(bool wholeFrame);   // a frame or a substep (live), or the next recorded frame
   void restart();
-  void stepFrame();
   void writeCaches();
   void screenshot(const std::filesystem::path& path);
   void saveScene(const std::filesystem::path& path);
@@ -104,6 +103,7 @@ class Viewer {
   // Stats.
   double uiFps_ = 0;
   std::chrono::steady_clock::time_point lastUiFrame_{};
+  std::chrono::steady_clock::time_point lastApply_{};
   char savePath_[512] = {};
 };
 

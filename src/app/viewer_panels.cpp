@@ -235,6 +235,7 @@ bool editInteraction(const char* id, scene::InteractionDesc& d) {
 
 void Viewer::applyEdits() {
   editsPending_ = false;
+  lastApply_ = std::chrono::steady_clock::now();
   if (!live()) return;
   try {
     const auto result = session_->applyEdits();
@@ -247,7 +248,7 @@ void Viewer::applyEdits() {
 }
 
 void Viewer::refreshStability() {
-  if (live()) stability_ = solver::assessStability(session_->model());
+  if (live()) stability_ = solver::assessStability(session_->model(), &session_->simulation().state());
 }
 
 void Viewer::drawPanels() {
@@ -276,7 +277,11 @@ void Viewer::drawPanels() {
 void Viewer::drawSimulationPanel() {
   const FrameSnapshot& f = frame();
   const solver::Model& model = session_->model();
-  ImGui::Text("frame %lld   t = %.3f s   %s", static_cast<long long>(f.frame), f.time, paused_ ? "(paused)" : "");
+  if (session_->substepInFrame() > 0)
+    ImGui::Text("frame %lld + substep %d/%d   %s", static_cast<long long>(f.frame), session_->substepInFrame(),
+                model.substeps, paused_ ? "(paused)" : "");
+  else
+    ImGui::Text("frame %lld   t = %.3f s   %s", static_cast<long long>(f.frame), f.time, paused_ ? "(paused)" : "");
   ImGui::Text("%zu particles   %.2f ms/step   %.0f fps", model.particleCount(), session_->lastStepMilliseconds(),
               uiFps_);
   if (ImGui::Button(paused_ ? "play" : "pause")) paused_ = !paused_;

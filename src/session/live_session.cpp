@@ -107,6 +107,7 @@ void LiveSession::start(scene::Compiled compiled) {
   cacheMeshes_ = std::move(cacheMeshes);
   blownUp_ = false;
   lastStepMs_ = 0;
+  substepInFrame_ = 0;
   recorded_.clear();
   recorded_.shrink_to_fit();
   recordedBytes_ = 0;
@@ -159,6 +160,9 @@ void LiveSession::advanceFrame() {
   if (blownUp_)
     throw BlowUpError(fmt::format("the simulation blew up after frame {}: restart it or change the settings",
                                   snapshot_.frame));
+  // Finish a frame begun substep by substep, else a whole one.
+  while (substepInFrame_ != 0)
+    if (advanceSubstep()) return;
   const auto start = std::chrono::steady_clock::now();
   try {
     sim_->advanceFrame();
@@ -170,6 +174,29 @@ void LiveSession::advanceFrame() {
   lastStepMs_ = ms / model_->substeps;
   refreshSnapshot();
   record();
+}
+
+bool LiveSession::advanceSubstep() {
+  if (blownUp_)
+    throw BlowUpError(fmt::format("the simulation blew up after frame {}: restart it or change the settings",
+                                  snapshot_.frame));
+  const auto start = std::chrono::steady_clock::now();
+  sim_->step();
+  ++substepInFrame_;
+  const bool frameDone = substepInFrame_ >= model_->substeps;
+  if (frameDone) {
+    substepInFrame_ = 0;
+    try {
+      sim_->finishFrame();
+    } catch (const BlowUpError&) {
+      blownUp_ = true;
+      throw;
+    }
+  }
+  lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  refreshSnapshot();
+  if (frameDone) record();
+  return frameDone;
 }
 
 void LiveSession::refreshSnapshot() { sim_->snapshot(snapshot_); }

@@ -81,6 +81,15 @@ class LiveSession {
   /// frame, blownUp() is true, and only restart() or applyEdits() go on.
   void advanceFrame();
 
+  /// One substep (the seed's -drawPerFrame 0: draw every update); snapshot() shows it.
+  /// The substep that completes a frame advances frame() and records it, as
+  /// advanceFrame does; returns true then. BlowUpError as advanceFrame (checked at the
+  /// end of each frame).
+  bool advanceSubstep();
+
+  /// Substeps done in the current, unfinished frame (0 between frames).
+  [[nodiscard]] int substepInFrame() const { return substepInFrame_; }
+
   /// The frame number of snapshot().
   [[nodiscard]] std::int64_t frame() const { return snapshot_.frame; }
   /// The current frame, in stable-id order (kept up to date by every call above).
@@ -151,6 +160,7 @@ class LiveSession {
   std::vector<cache::ObjectMesh> cacheMeshes_;
   FrameSnapshot snapshot_;
   double lastStepMs_ = 0;
+  int substepInFrame_ = 0;
   bool blownUp_ = false;
 
   bool recording_ = true;        // keeping frames now

@@ -221,6 +221,10 @@ void Simulation::step() {
 
 void Simulation::advanceFrame() {
   for (int k = 0; k < model_.substeps; ++k) step();
+  finishFrame();
+}
+
+void Simulation::finishFrame() {
   ++state_.frame;
   checkFinite();
 }

@@ -23,6 +23,9 @@ class Simulation {
   /// model.substeps substeps, then frame += 1. Throws BlowUpError (with frame, fluid,
   /// particle id, quantity and value) if any position or velocity is not finite.
   void advanceFrame();
+  /// Ends a frame stepped substep by substep with step() (the viewer's -drawPerFrame 0):
+  /// frame += 1, then the same finiteness check as advanceFrame.
+  void finishFrame();
 
   /// The current frame as plain arrays in stable-id order (buffers reused).
   void snapshot(FrameSnapshot& out) const;

@@ -321,3 +321,44 @@ TEST(LiveSession, TimesItsSubsteps) {
 
 }  // namespace
 }  // namespace softsub::session
+
+namespace softsub::session {
+namespace {
+
+// The seed's -drawPerFrame 0: stepping substep by substep gives bitwise the frames of
+// stepping frame by frame, records only whole frames, and a frame call finishes a
+// frame begun by substeps.
+TEST(LiveSessionSubsteps, SubstepBySubstepEqualsFrameByFrame) {
+  test::ScratchDir dirA, dirB;
+  LiveSession byFrame(test::smallScene(true), "small", dirA.path());
+  LiveSession bySubstep(test::smallScene(true), "small", dirB.path());
+  const int substeps = byFrame.model().substeps;
+  ASSERT_GT(substeps, 1);
+  for (int f = 0; f < 3; ++f) {
+    byFrame.advanceFrame();
+    for (int k = 1; k < substeps; ++k) {
+      EXPECT_FALSE(bySubstep.advanceSubstep());
+      EXPECT_EQ(bySubstep.substepInFrame(), k);
+      EXPECT_EQ(bySubstep.frame(), f);  // a frame in progress keeps its number
+    }
+    EXPECT_TRUE(bySubstep.advanceSubstep());
+    EXPECT_EQ(bySubstep.substepInFrame(), 0);
+    EXPECT_EQ(bySubstep.frame(), f + 1);
+    EXPECT_EQ(test::positionsOf(bySubstep.snapshot()), test::positionsOf(byFrame.snapshot()));
+  }
+  EXPECT_EQ(bySubstep.recordedFrames(), byFrame.recordedFrames());
+  // Half a frame by substeps, then a frame call: it finishes that frame.
+  for (int k = 0; k < substeps / 2; ++k) bySubstep.advanceSubstep();
+  bySubstep.advanceFrame();
+  byFrame.advanceFrame();
+  EXPECT_EQ(bySubstep.frame(), byFrame.frame());
+  EXPECT_EQ(test::positionsOf(bySubstep.snapshot()), test::positionsOf(byFrame.snapshot()));
+  // A restart forgets the frame in progress.
+  bySubstep.advanceSubstep();
+  bySubstep.restart();
+  EXPECT_EQ(bySubstep.substepInFrame(), 0);
+  EXPECT_EQ(bySubstep.frame(), 0);
+}
+
+}  // namespace
+}  // namespace softsub::session
