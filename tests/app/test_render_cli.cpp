@@ -179,12 +179,9 @@ TEST(RenderCli, ARecordedFolderIsDrawnLikeTheScene) {
   }
 }
 
-// DISABLED: product bug. `render two-fluidsSim/` (a trailing slash, as shells complete
-// folder names) looks for the scene beside the folder in the folder itself
-// (render_playback.cpp: dir.parent_path()), so it draws white particles without the
-// container from a fitted camera. Enable when render uses session::Playback (which strips
-// the slash).
-TEST(RenderCli, DISABLED_AFolderNamedWithATrailingSlashIsDrawnTheSame) {
+// Shells complete folder names with a trailing slash: the scene beside the folder must
+// still be found (colours, container, camera).
+TEST(RenderCli, AFolderNamedWithATrailingSlashIsDrawnTheSame) {
   TempDir tmp;
   const fs::path recorded = recordTwoFluids(tmp.path());
   const RunResult a = render(recorded, tmp / "plain", "--frames 1", tmp.path());

@@ -1,0 +1,244 @@
+// `softsub view --script` end to end, in a real window under Xvfb: a scripted parameter
+// change, frames, a saved scene and a screenshot; playback of a recorded folder; scripts
+// with a bad line or value refused with the script's file and line.
+#include <array>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/sim_format.h"
+#include "picture_checks.h"
+
+namespace softsub::apptest {
+namespace {
+
+constexpr int kWidth = 900;
+constexpr int kHeight = 600;
+
+void writeText(const fs::path& p, const std::string& text) {
+  std::FILE* f = std::fopen(p.c_str(), "wb");
+  ASSERT_NE(f, nullptr) << p;
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+}
+
+/// Skips the test when there is no xvfb-run (the install script installs it: CI runs these).
+#define SKIP_WITHOUT_XVFB()                                                           \
+  do {                                                                                \
+    if (findProgram("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run is not installed"; \
+  } while (0)
+
+/// `softsub view <input> --script <script> --width 900 --height 600` in a virtual X
+/// server; killed after 60 s (a script without a working `quit` would hang). xvfb-run -a
+/// can lose the race for a display number to a parallel test: then it is tried again.
+RunResult view(const fs::path& input, const fs::path& script, const fs::path& cwd) {
+  const std::string command = fmt::format(
+      "timeout -k 5 60 xvfb-run -a -s '-screen 0 1400x1000x24' {} view {} --script {} --width {} --height {}",
+      quote(softsubBinary()), quote(input), quote(script), kWidth, kHeight);
+  RunResult r;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    r = runCommand(command, cwd);
+    if (r.err.find("Xvfb failed to start") == std::string::npos) break;
+  }
+  return r;
+}
+
+/// A scene's state after `frames` frames, simulated here the way the viewer does.
+FrameSnapshot frameAfter(const scene::SceneDesc& desc, int frames) {
+  scene::Compiled c = scene::compile(desc);
+  solver::Simulation sim(c.model, std::move(c.state));
+  for (int f = 0; f < frames; ++f) sim.advanceFrame();
+  return sim.snapshot();
+}
+
+/// The screenshot is the window: its size, not blank, and each fluid of `frame` shows in
+/// its colour where its particles' centroid projects through `camera`.
+void expectScreenshotShows(const fs::path& png, const render::Camera& camera, const FrameSnapshot& frame) {
+  ASSERT_TRUE(fs::is_regular_file(png)) << png;
+  const render::Image im = readPng(png);
+  EXPECT_EQ(im.width, kWidth);
+  EXPECT_EQ(im.height, kHeight);
+  EXPECT_GT(distinctColours(im), 500u) << "blank or nearly blank screenshot";
+  EXPECT_GT(brightnessSpread(im), 10.0);
+  const int half = std::max(2, static_cast<int>(largestPixelRadius(camera, frame, im.height)));
+  for (const FluidSnapshot& f : frame.fluids) {
+    SCOPED_TRACE(f.name);
+    const auto px = render::projectToPixel(camera, centroid(f), im.width, im.height);
+    ASSERT_TRUE(px);
+    EXPECT_GE(shareShowing(im, (*px)[0], (*px)[1], half, f.colour), 0.5)
+        << "fluid colour missing around its centroid's pixel " << (*px)[0] << ", " << (*px)[1];
+    EXPECT_GT(shareShowing(im, f.colour) * im.width * im.height, 500.0);
+  }
+}
+
+TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const scene::SceneDesc original = scene::readSceneFile(scene.string());
+  ASSERT_EQ(original.fluids.size(), 1u);
+  const std::string fluid = original.fluids[0].name;
+  const double viscosity = original.fluids[0].params.viscosity * 2 + 0.5;  // a new value
+  const fs::path script = tmp / "tweak.txt";
+  writeText(script, fmt::format("# thicker honey, three frames, keep both\n"
+                                "set fluid {} Viscosity {}\n"
+                                "frames 3\n"
+                                "save tweaked.scene\n"
+                                "screenshot shot.png   # the window, panel included\n"
+                                "quit\n",
+                                fluid, viscosity));
+  const RunResult r = view(scene, script, tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+
+  // The saved scene is the original with the new viscosity, nothing else changed.
+  ASSERT_TRUE(fs::is_regular_file(tmp / "tweaked.scene")) << r.err;
+  const scene::SceneDesc saved = scene::readSceneFile((tmp / "tweaked.scene").string());
+  scene::SceneDesc expected = original;
+  expected.fluids[0].params.viscosity = viscosity;
+  EXPECT_NE(saved.fluids.at(0).params.viscosity, original.fluids[0].params.viscosity);
+  EXPECT_EQ(saved.fluids.at(0).params.viscosity, viscosity);
+  EXPECT_TRUE(saved == expected) << "the saved scene differs from the original in more than the viscosity";
+  EXPECT_EQ(saved.simulation, original.simulation);
+  EXPECT_EQ(saved.camera, original.camera);
+  EXPECT_EQ(saved.environment, original.environment);
+  EXPECT_EQ(saved.interactions, original.interactions);
+
+  // The screenshot shows the honey where the tweaked simulation has it after 3 frames,
+  // seen from the scene's camera (no key moved it).
+  expectScreenshotShows(tmp / "shot.png", cameraOf(original), frameAfter(expected, 3));
+  // The original scene file is untouched.
+  EXPECT_EQ(readFile(scene), readFile(examplesDir() / "honey-drop.scene"));
+}
+
+TEST(Viewer, AColourChangeShowsInTheNextScreenshot) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const scene::SceneDesc original = scene::readSceneFile(scene.string());
+  const std::string fluid = original.fluids.at(0).name;
+  // The colour with the channels rotated: a clearly different hue from the scene's.
+  const Vec3& c = original.fluids[0].colour;
+  const std::array<float, 3> before{static_cast<float>(c.x()), static_cast<float>(c.y()),
+                                    static_cast<float>(c.z())};
+  const std::array<float, 3> after{before[2], before[0], before[1]};
+  ASSERT_TRUE(distinguishable(before, after));
+  writeText(tmp / "colour.txt", fmt::format("screenshot before.png\n"
+                                            "set fluid {} Colour {} {} {}\n"
+                                            "wait 1\n"
+                                            "screenshot after.png\n"
+                                            "quit\n",
+                                            fluid, after[0], after[1], after[2]));
+  const RunResult r = view(scene, tmp / "colour.txt", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const render::Image a = readPng(tmp / "before.png"), b = readPng(tmp / "after.png");
+  ASSERT_EQ(a.width, kWidth);
+  ASSERT_EQ(b.width, kWidth);
+  // Where the fluid is (no frame was simulated in between: `wait` only draws), the old
+  // colour before and the new one after.
+  const render::Camera camera = cameraOf(original);
+  const FrameSnapshot frame = initialFrame(original);
+  const auto px = render::projectToPixel(camera, centroid(frame.fluids.at(0)), kWidth, kHeight);
+  ASSERT_TRUE(px);
+  const int half = std::max(2, static_cast<int>(largestPixelRadius(camera, frame, kHeight)));
+  EXPECT_GE(shareShowing(a, (*px)[0], (*px)[1], half, before), 0.5);
+  EXPECT_LE(shareShowing(a, (*px)[0], (*px)[1], half, after), 0.05);
+  EXPECT_GE(shareShowing(b, (*px)[0], (*px)[1], half, after), 0.5);
+  EXPECT_LE(shareShowing(b, (*px)[0], (*px)[1], half, before), 0.05);
+  // And over the whole window, the fluid's many particles in the new colour.
+  EXPECT_GT(shareShowing(b, after) * b.width * b.height, 2000.0);
+  EXPECT_GT(shareShowing(a, before) * a.width * a.height, 2000.0);
+}
+
+TEST(Viewer, PlaysBackARecordedFolder) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const fs::path recorded = tmp / "two-fluidsSim";
+  const RunResult run =
+      runSoftsub("run " + quote(scene) + " --frames 4 --formats sim -q --out " + quote(recorded), tmp.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  writeText(tmp / "play.txt", "frames 2\nscreenshot play.png\nquit\n");
+  const RunResult r = view(recorded, tmp / "play.txt", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  // Two frames on from the first: the recording's frame 2, drawn with the scene's colours
+  // from its camera.
+  const scene::SceneDesc desc = scene::readSceneFile(scene.string());
+  FrameSnapshot frame = cache::readSimFile(recorded / "two-fluids.0002.sim").frame;
+  ASSERT_EQ(frame.fluids.size(), desc.fluids.size());
+  for (std::size_t k = 0; k < frame.fluids.size(); ++k) {
+    const Vec3& c = desc.fluids[k].colour;
+    frame.fluids[k].colour = {static_cast<float>(c.x()), static_cast<float>(c.y()),
+                              static_cast<float>(c.z())};
+    frame.fluids[k].particleSize = static_cast<float>(desc.fluids[k].params.particleSize);
+  }
+  expectScreenshotShows(tmp / "play.png", cameraOf(desc), frame);
+  // Playing back writes nothing into the recording.
+  EXPECT_EQ(listFiles(recorded).size(), 5u);
+}
+
+TEST(Viewer, ARecordingRefusesParameterEdits) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const fs::path recorded = tmp / "honey-dropSim";
+  const RunResult run =
+      runSoftsub("run " + quote(scene) + " --frames 1 --formats sim -q --out " + quote(recorded), tmp.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  const std::string fluid = scene::readSceneFile(scene.string()).fluids.at(0).name;
+  writeText(tmp / "edit.txt",
+            fmt::format("frames 1\nset fluid {} Viscosity 2\nsave never.scene\nquit\n", fluid));
+  const RunResult r = view(recorded, tmp / "edit.txt", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err << r.out;
+  EXPECT_NE(r.err.find("edit.txt:2"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "never.scene"));
+}
+
+struct BadScript {
+  std::string name;    ///< test name
+  std::string text;    ///< the script; %FLUID% is the scene's fluid
+  int line;            ///< the line the message must name
+  std::string naming;  ///< also in the message
+};
+
+class ViewerRefusesScript : public ::testing::TestWithParam<BadScript> {};
+
+TEST_P(ViewerRefusesScript, WithExitTwoNamingTheScriptAndLine) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  std::string text = GetParam().text;
+  const std::string fluid = scene::readSceneFile(scene.string()).fluids.at(0).name;
+  for (auto at = text.find("%FLUID%"); at != std::string::npos; at = text.find("%FLUID%"))
+    text.replace(at, 7, fluid);
+  const fs::path script = tmp / "bad-script.txt";
+  writeText(script, text);
+  const RunResult r = view(scene, script, tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err << r.out;
+  EXPECT_NE(r.err.find(fmt::format("bad-script.txt:{}", GetParam().line)), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(GetParam().naming), std::string::npos) << r.err;
+  // Nothing the script would have written after the failure is there.
+  EXPECT_FALSE(fs::exists(tmp / "never.scene"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bad, ViewerRefusesScript,
+    ::testing::Values(
+        BadScript{"UnknownCommand", "# comment\nframes 1\nfrobnicate 3\nsave never.scene\nquit\n", 3,
+                  "frobnicate"},
+        BadScript{"UnknownKey", "key F13\nsave never.scene\nquit\n", 1, "F13"},
+        BadScript{"ViscosityNotANumber",
+                  "frames 1\n\nset fluid %FLUID% Viscosity thick\nsave never.scene\nquit\n", 3, "Viscosity"},
+        BadScript{"ColourOutOfRange", "set fluid %FLUID% Colour 2 0 0\nsave never.scene\nquit\n", 1,
+                  "Colour"},
+        BadScript{"UnknownTag", "set fluid %FLUID% Stickiness 3\nsave never.scene\nquit\n", 1, "Stickiness"},
+        BadScript{"UnknownFluid", "frames 1\nset fluid no-such-fluid Viscosity 2\nsave never.scene\nquit\n",
+                  2, "no-such-fluid"},
+        BadScript{"FramesNotACount", "frames many\nsave never.scene\nquit\n", 1, "frames"}),
+    [](const auto& p) { return p.param.name; });
+
+}  // namespace
+}  // namespace softsub::apptest
