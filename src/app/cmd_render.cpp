@@ -186,6 +186,14 @@ int renderCommand(const RenderOptions& o) {
     RecordedFrames rec = openRecorded(o.input);
     sceneName = rec.sceneName;
     fps = rec.framesPerSecond;
+    bool any = false;
+    for (std::size_t i = 0; i < rec.frameCount() && !any; ++i) any = range.contains(rec.frameNumber(i));
+    if (!any)
+      throw InputError({"command line", 0, "--frames"},
+                       fmt::format("no frame of {} is in '{}'", o.input, o.frames),
+                       fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
+                                   rec.frameNumber(rec.frameCount() - 1)));
+    if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     cache::ensureDirectory(out);
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
     observer.emplace(*maker, rec.camera, out, sceneName, range);
