@@ -173,6 +173,15 @@ int renderCommand(const RenderOptions& o) {
     throw InputError({"command line", 0, "--movie"}, "ffmpeg is not installed", "install ffmpeg, or leave out --movie");
   const bool chatty = stderrIsTerminal() && !o.quiet;
   const std::filesystem::path out(o.out);
+  // Both output folders are made once every option has been checked (the movie's too,
+  // so a missing folder does not fail it after every picture is drawn).
+  auto prepareOutputs = [&] {
+    cache::ensureDirectory(out);
+    if (!o.movie.empty()) {
+      const std::filesystem::path parent = std::filesystem::path(o.movie).parent_path();
+      if (!parent.empty()) cache::ensureDirectory(parent);
+    }
+  };
 
   std::string sceneName;
   double fps = 24;
@@ -194,7 +203,7 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
-    cache::ensureDirectory(out);
+    prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
     observer.emplace(*maker, rec.camera, out, sceneName, range);
     pictures = &*observer;
@@ -222,7 +231,7 @@ int renderCommand(const RenderOptions& o) {
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
-    cache::ensureDirectory(out);
+    prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range);
     pictures = &*observer;

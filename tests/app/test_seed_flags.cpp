@@ -32,6 +32,9 @@ TEST(SeedFlags, KeepsAnExplicitSubcommand) {
   EXPECT_EQ(rewrite({"run", "-f", "a.scene", "-record", "0"}),
             (Args{"run", "-f", "a.scene", "--record=0"}));
   EXPECT_EQ(rewrite({"run", "a.scene", "--frames", "3"}), (Args{"run", "a.scene", "--frames", "3"}));
+  // The viewer takes the seed's flags too, -drawPerFrame included.
+  EXPECT_EQ(rewrite({"view", "-f", "a.scene", "-updateNum", "4", "-drawPerFrame", "0", "-record", "0"}),
+            (Args{"view", "-f", "a.scene", "--substeps=4", "--draw-per-frame=0", "--record=0"}));
 }
 
 TEST(SeedFlags, LeavesOtherLinesAlone) {
