@@ -156,6 +156,15 @@ uniform vec4 colour;
 out vec4 outColour;
 void main() { outColour = colour; })";
 
+/// A shader's or program's log (glGetShaderInfoLog / glGetProgramInfoLog).
+std::string infoLog(GLuint object, void (*get)(GLuint, GLsizei, GLsizei*, GLchar*)) {
+  std::string log(4096, '\0');
+  GLsizei n = 0;
+  get(object, static_cast<GLsizei>(log.size()), &n, log.data());
+  log.resize(static_cast<std::size_t>(std::max<GLsizei>(n, 0)));
+  return log;
+}
+
 GLuint compile(GLenum type, const char* source, const char* name) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &source, nullptr);
@@ -163,10 +172,7 @@ GLuint compile(GLenum type, const char* source, const char* name) {
   GLint ok = 0;
   glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
   if (ok == 0) {
-    std::string log(4096, '\0');
-    GLsizei n = 0;
-    glGetShaderInfoLog(s, static_cast<GLsizei>(log.size()), &n, log.data());
-    log.resize(static_cast<std::size_t>(n));
+    const std::string log = infoLog(s, glGetShaderInfoLog);
     glDeleteShader(s);
     throw std::runtime_error(fmt::format("OpenGL: the {} shader does not compile: {}", name, log));
   }
@@ -185,10 +191,7 @@ GLuint link(const char* vs, const char* fs, const char* name) {
   GLint ok = 0;
   glGetProgramiv(p, GL_LINK_STATUS, &ok);
   if (ok == 0) {
-    std::string log(4096, '\0');
-    GLsizei n = 0;
-    glGetProgramInfoLog(p, static_cast<GLsizei>(log.size()), &n, log.data());
-    log.resize(static_cast<std::size_t>(n));
+    const std::string log = infoLog(p, glGetProgramInfoLog);
     glDeleteProgram(p);
     throw std::runtime_error(fmt::format("OpenGL: the {} program does not link: {}", name, log));
   }

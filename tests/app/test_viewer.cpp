@@ -75,6 +75,16 @@ void expectScreenshotShows(const fs::path& png, const render::Camera& camera, co
   }
 }
 
+/// Runs `scene` for `frames` frames into `<dir>/<stem>Sim` (.sim only) and returns the folder.
+fs::path recordFrames(const fs::path& scene, int frames, const fs::path& dir) {
+  const fs::path recorded = dir / (scene.stem().string() + "Sim");
+  const RunResult run = runSoftsub("run " + quote(scene) + " --frames " + std::to_string(frames) +
+                                       " --formats sim -q --out " + quote(recorded),
+                                   dir);
+  EXPECT_EQ(run.code, 0) << run.err;
+  return recorded;
+}
+
 TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
   SKIP_WITHOUT_XVFB();
   TempDir tmp;
@@ -157,10 +167,7 @@ TEST(Viewer, PlaysBackARecordedFolder) {
   SKIP_WITHOUT_XVFB();
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
-  const fs::path recorded = tmp / "two-fluidsSim";
-  const RunResult run =
-      runSoftsub("run " + quote(scene) + " --frames 4 --formats sim -q --out " + quote(recorded), tmp.path());
-  ASSERT_EQ(run.code, 0) << run.err;
+  const fs::path recorded = recordFrames(scene, 4, tmp.path());
   writeText(tmp / "play.txt", "frames 2\nscreenshot play.png\nquit\n");
   const RunResult r = view(recorded, tmp / "play.txt", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err << r.out;
@@ -184,10 +191,7 @@ TEST(Viewer, ARecordingRefusesParameterEdits) {
   SKIP_WITHOUT_XVFB();
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
-  const fs::path recorded = tmp / "honey-dropSim";
-  const RunResult run =
-      runSoftsub("run " + quote(scene) + " --frames 1 --formats sim -q --out " + quote(recorded), tmp.path());
-  ASSERT_EQ(run.code, 0) << run.err;
+  const fs::path recorded = recordFrames(scene, 1, tmp.path());
   const std::string fluid = scene::readSceneFile(scene.string()).fluids.at(0).name;
   writeText(tmp / "edit.txt",
             fmt::format("frames 1\nset fluid {} Viscosity 2\nsave never.scene\nquit\n", fluid));
