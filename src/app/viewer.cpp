@@ -119,6 +119,7 @@ void Viewer::openWindow() {
   if (window_ == nullptr)
     throw IoError(fmt::format("cannot open an OpenGL 3.3 window: {}", glfwFailure.empty() ? "unknown reason" : glfwFailure));
   glfwMakeContextCurrent(window_);
+  render::pinGraphicsDrivers();
   glfwSwapInterval(1);
   glfwSetWindowUserPointer(window_, this);
   // Ours first: ImGui's backend chains to callbacks installed before it.

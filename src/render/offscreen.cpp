@@ -1,11 +1,15 @@
 #include "render/offscreen.h"
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstring>
+#include <string_view>
 
 #include "core/error.h"
 #include "render/gl.h"
@@ -47,7 +51,20 @@ EGLDisplay openDisplay() {
   return eglGetDisplay(EGL_DEFAULT_DISPLAY);
 }
 
+int pinIfDriver(struct dl_phdr_info* info, std::size_t, void*) {
+  const std::string_view name = info->dlpi_name != nullptr ? info->dlpi_name : "";
+  const std::string_view base = name.substr(name.find_last_of('/') + 1);
+  const bool driver = base.find("_dri.so") != std::string_view::npos || base.starts_with("libEGL_") ||
+                      base.starts_with("libGLX_") || base.starts_with("libgallium") ||
+                      base.starts_with("libvulkan_");
+  // RTLD_NOLOAD: only what is loaded already; RTLD_NODELETE: never unloaded.
+  if (driver) (void)dlopen(std::string(name).c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+  return 0;
+}
+
 }  // namespace
+
+void pinGraphicsDrivers() { dl_iterate_phdr(pinIfDriver, nullptr); }
 
 struct OffscreenContext::Egl {
   EGLDisplay display = EGL_NO_DISPLAY;
@@ -85,6 +102,7 @@ OffscreenContext::OffscreenContext() : egl_(std::make_unique<Egl>()) {
     eglTerminate(e.display);
     noContext("cannot make the context current without a surface, " + eglErrorText(err));
   }
+  pinGraphicsDrivers();
 }
 
 OffscreenContext::~OffscreenContext() {

@@ -48,6 +48,13 @@ class Framebuffer {
   unsigned drawFbo_ = 0, resolveFbo_ = 0, colour_ = 0, depth_ = 0, resolveColour_ = 0;
 };
 
+/// Keeps the OpenGL drivers loaded so far (Mesa's EGL/GLX vendor libraries and its DRI
+/// driver) loaded until the process exits. A later context then starts without reloading
+/// them, and LeakSanitizer still sees the driver's globals at exit: an unloaded driver's
+/// allocations are otherwise reported as leaks in an unknown module. Call after a
+/// context is made; harmless to call again.
+void pinGraphicsDrivers();
+
 /// Reads the currently bound framebuffer's (0, 0, width, height) into an Image, rows top
 /// to bottom (the viewer's screenshots).
 [[nodiscard]] Image readPixels(int width, int height);
