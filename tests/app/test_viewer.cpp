@@ -246,3 +246,29 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace softsub::apptest
+
+namespace softsub::apptest {
+namespace {
+
+// Without a display the window cannot open: an I/O failure (exit 3) that says what to do
+// instead, and the script's outputs are not written.
+TEST(Viewer, WithoutADisplayExitsThreeAndPointsToRender) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  {
+    std::FILE* f = std::fopen((tmp / "s.txt").c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    std::fputs("save out.scene\nquit\n", f);
+    std::fclose(f);
+  }
+  const RunResult r = runCommand(fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY {} view {} --script s.txt",
+                                             quote(softsubBinary()), quote(scene)),
+                                 tmp.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("cannot open a window"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("softsub render"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "out.scene"));
+}
+
+}  // namespace
+}  // namespace softsub::apptest
