@@ -1,0 +1,94 @@
+#pragma once
+/// Surfaces of particle fluids: a blobby (metaball) field after the seed (chapters 2.4.1
+/// and 3.5.1), converted to a narrow-band signed-distance level set and a closed triangle
+/// mesh. OpenVDB does the sparse grid, the level-set rebuild, the meshing and the `.vdb`
+/// files; none of its headers is visible here.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace softsub::surface {
+
+/// How the field is built and sampled. Lengths are in scene units; the defaults follow
+/// the seed's Maya rule (blob radius 1.5 x the particle diameter, threshold half of the
+/// blob "size").
+struct SurfaceSettings {
+  /// Edge of a voxel. 0 (the default) means particle size / 3: three voxels across a
+  /// particle, enough for a ball of a few particles to mesh as a ball.
+  double voxelSize = 0.0;
+  /// Blob radius (support of each particle's kernel) as a multiple of the particle
+  /// diameter. Seed 3.5.1: 1.5.
+  double radiusScale = 1.5;
+  /// Iso value of the summed field. Each particle contributes k(s) = (1 - s^2)^3 with
+  /// s = distance / blob radius (1 at its centre, 0 at the blob radius, smooth). The
+  /// seed's "threshold half of the blob" is read as the field value 0.5 relative to one
+  /// particle's peak; see docs/architecture.md (surface) for the calibration.
+  double threshold = 0.5;
+  /// Half width of the narrow band of the written level set, in voxels (OpenVDB's usual 3).
+  double halfBandVoxels = 3.0;
+};
+
+/// A triangle mesh with per-vertex normals. Triangles are counter-clockwise seen from
+/// outside (normals point out); a surface from meshParticles is closed.
+struct SurfaceMesh {
+  std::vector<std::array<float, 3>> vertices;
+  std::vector<std::array<float, 3>> normals;  ///< one per vertex, unit length
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+/// A narrow-band signed-distance level set (negative inside), held by OpenVDB. Cheap to
+/// copy (shared, immutable).
+class LevelSet {
+ public:
+  /// An empty level set (no particles: everything is outside).
+  LevelSet();
+  /// The blobby field of the particles (xyz triples, scene units) of diameter
+  /// particleSize, as a level set of its iso surface. Non-finite positions are skipped.
+  /// Throws std::invalid_argument for a non-positive particle size or settings out of
+  /// range, or positions too far from the origin for the voxel grid (|x| / voxel > 2^30).
+  static LevelSet fromParticles(std::span<const float> positionsXYZ, double particleSize,
+                                const SurfaceSettings& settings = {});
+  /// Reads the first float grid of a .vdb file (throws softsub::IoError if it cannot).
+  static LevelSet readVdb(const std::filesystem::path& file);
+
+  /// The zero iso surface as a closed, consistently oriented triangle mesh (quads split
+  /// along their shorter diagonal), with normals from the level set's gradient.
+  [[nodiscard]] SurfaceMesh mesh() const;
+  /// Writes the level set as a .vdb file with one grid called gridName (throws
+  /// softsub::IoError when it cannot be written).
+  void writeVdb(const std::filesystem::path& file, const std::string& gridName = "surface") const;
+  /// The signed distance at a point in scene units (trilinear; the background, a positive
+  /// band width, far outside).
+  [[nodiscard]] double sample(double x, double y, double z) const;
+  /// Edge of a voxel, scene units (0 for an empty level set).
+  [[nodiscard]] double voxelSize() const;
+  /// Number of active voxels (the narrow band): the memory the level set holds.
+  [[nodiscard]] std::size_t activeVoxelCount() const;
+  /// No voxel inside: nothing to mesh.
+  [[nodiscard]] bool empty() const;
+
+  struct Impl;
+
+ private:
+  explicit LevelSet(std::shared_ptr<const Impl> impl);
+  std::shared_ptr<const Impl> impl_;
+};
+
+/// Shortcut: LevelSet::fromParticles(...).mesh().
+SurfaceMesh meshParticles(std::span<const float> positionsXYZ, double particleSize,
+                          const SurfaceSettings& settings = {});
+
+/// Volume enclosed by a closed mesh (divergence theorem); positive when its triangles face
+/// out. Meaningless for an open mesh.
+double enclosedVolume(const SurfaceMesh& mesh);
+
+/// Every edge is shared by exactly two triangles that run along it in opposite directions
+/// (closed, 2-manifold at edges, consistently oriented), and every index is in range.
+/// An empty mesh counts as closed.
+bool isClosedAndOriented(const SurfaceMesh& mesh);
+
+}  // namespace softsub::surface

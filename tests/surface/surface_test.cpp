@@ -1,0 +1,131 @@
+// Surfaces: particles -> level set -> closed mesh, and the .vdb round trip (issue #5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <vector>
+
+#include "surface/surface.h"
+
+namespace ss = softsub::surface;
+
+namespace {
+
+// Lattice points (spacing h) inside a ball of radius r around c.
+std::vector<float> ball(double r, double h, std::array<double, 3> c = {0, 0, 0}) {
+  std::vector<float> xyz;
+  const int n = static_cast<int>(std::ceil(r / h));
+  for (int i = -n; i <= n; ++i)
+    for (int j = -n; j <= n; ++j)
+      for (int k = -n; k <= n; ++k) {
+        const double x = i * h, y = j * h, z = k * h;
+        if (x * x + y * y + z * z <= r * r) {
+          xyz.push_back(float(c[0] + x));
+          xyz.push_back(float(c[1] + y));
+          xyz.push_back(float(c[2] + z));
+        }
+      }
+  return xyz;
+}
+
+}  // namespace
+
+TEST(MeshChecks, TetrahedronVolumeAndClosure) {
+  ss::SurfaceMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};  // counter-clockwise from outside
+  EXPECT_NEAR(ss::enclosedVolume(m), 1.0 / 6.0, 1e-12);
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  m.triangles[3] = {1, 3, 2};  // one face flipped
+  EXPECT_FALSE(ss::isClosedAndOriented(m));
+  m.triangles.pop_back();  // open
+  EXPECT_FALSE(ss::isClosedAndOriented(m));
+}
+
+TEST(Surface, BallMeshesClosedWithTheBallsVolume) {
+  const double h = 1.0, r = 6.0;
+  const auto xyz = ball(r, h);
+  const auto count = xyz.size() / 3;
+  const ss::SurfaceMesh m = ss::meshParticles(xyz, h);
+  ASSERT_FALSE(m.triangles.empty());
+  EXPECT_EQ(m.normals.size(), m.vertices.size());
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const double v = ss::enclosedVolume(m);
+  const double ballVolume = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double restVolume = double(count) * h * h * h;  // count x particle cell volume
+  std::printf("ball r=%g: %zu particles, mesh %.1f, ball %.1f, rest %.1f\n", r, count, v,
+              ballVolume, restVolume);
+  EXPECT_GT(v, 0.0) << "triangles face inwards";
+  EXPECT_NEAR(v / restVolume, 1.0, 0.05);
+  // Normals point away from the centre.
+  for (std::size_t i = 0; i < m.vertices.size(); i += 97) {
+    const auto& p = m.vertices[i];
+    const auto& n = m.normals[i];
+    EXPECT_GT(p[0] * n[0] + p[1] * n[1] + p[2] * n[2], 0.0f);
+  }
+}
+
+TEST(Surface, EmptyInputGivesEmptyMesh) {
+  const std::vector<float> none;
+  const auto ls = ss::LevelSet::fromParticles(none, 1.0);
+  EXPECT_TRUE(ls.empty());
+  const auto m = ls.mesh();
+  EXPECT_TRUE(m.vertices.empty());
+  EXPECT_TRUE(m.triangles.empty());
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const auto file = std::filesystem::temp_directory_path() / "softsub_surface_empty.vdb";
+  ls.writeVdb(file);
+  EXPECT_TRUE(ss::LevelSet::readVdb(file).empty());
+  std::filesystem::remove(file);
+}
+
+TEST(Surface, OneParticleGivesASmallClosedBlob) {
+  const std::vector<float> one{1.0f, 2.0f, 3.0f};
+  const auto m = ss::meshParticles(one, 1.0);
+  ASSERT_FALSE(m.triangles.empty());
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const double v = ss::enclosedVolume(m);
+  EXPECT_GT(v, 0.0);
+  EXPECT_LT(v, 4.0 / 3.0 * std::numbers::pi * 1.5 * 1.5 * 1.5);  // inside the blob radius
+}
+
+TEST(Surface, NonFiniteParticlesAreSkippedAndBadSettingsRejected) {
+  const std::vector<float> xyz{0, 0, 0, NAN, 1, 1, INFINITY, 0, 0};
+  EXPECT_TRUE(ss::isClosedAndOriented(ss::meshParticles(xyz, 1.0)));
+  EXPECT_THROW(ss::meshParticles(xyz, 0.0), std::invalid_argument);
+  ss::SurfaceSettings bad;
+  bad.threshold = 1.5;
+  EXPECT_THROW(ss::meshParticles(xyz, 1.0, bad), std::invalid_argument);
+  const std::vector<float> far{0, 0, 0, 1e12f, 0, 0};
+  EXPECT_THROW(ss::meshParticles(far, 1.0), std::invalid_argument);
+}
+
+TEST(Surface, FarApartParticlesStaySparse) {
+  // Two particles 10^5 particle sizes apart: a dense grid over their box would be 10^16
+  // voxels; the sparse field holds two small blobs.
+  const std::vector<float> xyz{0, 0, 0, 1e5f, 1e5f, 1e5f};
+  const auto ls = ss::LevelSet::fromParticles(xyz, 1.0);
+  EXPECT_LT(ls.activeVoxelCount(), 100000u);
+  const auto m = ls.mesh();
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const auto one = ss::meshParticles(std::vector<float>{0, 0, 0}, 1.0);
+  EXPECT_NEAR(ss::enclosedVolume(m), 2.0 * ss::enclosedVolume(one), 1e-3 * ss::enclosedVolume(m));
+}
+
+TEST(Surface, VdbReadsBackAndItsZeroCrossingIsTheMesh) {
+  const auto xyz = ball(3.0, 1.0, {0.3, -0.2, 0.1});
+  const auto ls = ss::LevelSet::fromParticles(xyz, 1.0);
+  const auto m = ls.mesh();
+  const auto file = std::filesystem::temp_directory_path() / "softsub_surface_ball.vdb";
+  ls.writeVdb(file, "fluid");
+  const auto back = ss::LevelSet::readVdb(file);
+  std::filesystem::remove(file);
+  EXPECT_DOUBLE_EQ(back.voxelSize(), ls.voxelSize());
+  EXPECT_EQ(back.activeVoxelCount(), ls.activeVoxelCount());
+  double worst = 0.0;
+  for (const auto& p : m.vertices) worst = std::max(worst, std::abs(back.sample(p[0], p[1], p[2])));
+  EXPECT_LT(worst, back.voxelSize());
+  EXPECT_LT(back.sample(0.3, -0.2, 0.1), 0.0);  // inside
+  EXPECT_GT(back.sample(10, 10, 10), 0.0);      // outside
+}
