@@ -7,7 +7,9 @@
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 
@@ -47,7 +49,7 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
                                  const SurfaceSettings& s) {
   if (!(particleSize > 0.0) || !std::isfinite(particleSize))
     throw std::invalid_argument("surface: particle size must be positive");
-  if (!(s.radiusScale > 0.0) || !(s.threshold > 0.0) || !(s.threshold < 1.0) ||
+  if (!(s.restVolumePerParticle >= 0.0) || !(s.radiusScale > 0.0) || !(s.threshold > 0.0) || !(s.threshold < 1.0) ||
       !(s.voxelSize >= 0.0) || !(s.halfBandVoxels >= 1.0))
     throw std::invalid_argument(
         "surface: settings out of range (radiusScale > 0, 0 < threshold < 1, voxelSize >= 0, "
@@ -60,7 +62,7 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   const double vx = impl->voxel;
   const double radius = s.radiusScale * particleSize;  // blob radius
   const double r2 = radius * radius;
-  const auto threshold = static_cast<float>(s.threshold);
+  auto threshold = static_cast<float>(s.threshold);
 
   // The field phi = threshold - sum of kernels, accumulated sparsely: only voxels within
   // a blob radius of some particle are touched, so far-apart particles cost
@@ -95,6 +97,23 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
     }
   }
   if (used == 0) return LevelSet(std::move(impl));  // empty: nothing inside
+
+  if (s.preserveVolume) {
+    // The iso value that encloses the rest volume: the field value of the voxel ranked
+    // (rest volume / voxel volume) from the top. Voxel counting, no meshing: O(voxels).
+    std::vector<float> values;
+    values.reserve(static_cast<std::size_t>(field->activeVoxelCount()));
+    for (auto it = field->tree().cbeginValueOn(); it; ++it) values.push_back(*it);
+    const double perParticle =
+        s.restVolumePerParticle > 0.0 ? s.restVolumePerParticle : particleSize * particleSize * particleSize;
+    const double want = double(used) * perParticle / (vx * vx * vx);
+    const auto rank = static_cast<std::size_t>(std::clamp(want, 1.0, double(values.size())) - 1.0);
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank), values.end(),
+                     std::greater<>());
+    // Stay strictly between 0 (the blob radius: the field's support) and the peak.
+    const float peak = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank) + 1);
+    threshold = std::clamp(values[rank], 1e-3f, 0.999f * peak);
+  }
 
   // Sum of kernels -> threshold - sum (negative inside, OpenVDB's level-set sign), with
   // the background (everything never touched) outside at +threshold.

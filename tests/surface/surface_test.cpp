@@ -66,6 +66,16 @@ TEST(Surface, BallMeshesClosedWithTheBallsVolume) {
   }
 }
 
+TEST(Surface, FixedThresholdLetsALoneParticleFitItsSphere) {
+  ss::SurfaceSettings fixed;
+  fixed.preserveVolume = false;
+  fixed.voxelSize = 0.1;
+  const auto m = ss::meshParticles(std::vector<float>{0, 0, 0}, 1.0, fixed);
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const double r = std::cbrt(ss::enclosedVolume(m) * 3.0 / (4.0 * std::numbers::pi));
+  EXPECT_NEAR(r, 0.5, 0.03);  // seed 3.5.1: the blob fits the particle's sphere
+}
+
 TEST(Surface, EmptyInputGivesEmptyMesh) {
   const std::vector<float> none;
   const auto ls = ss::LevelSet::fromParticles(none, 1.0);
@@ -88,6 +98,9 @@ TEST(Surface, OneParticleGivesASmallClosedBlob) {
   const double v = ss::enclosedVolume(m);
   EXPECT_GT(v, 0.0);
   EXPECT_LT(v, 4.0 / 3.0 * std::numbers::pi * 1.5 * 1.5 * 1.5);  // inside the blob radius
+  // Not its rest volume (particleSize^3): at 3 voxels per particle a lone blob is under two
+  // voxels in radius and meshes at ~40% of it. Finer voxels for small fluids: issue #5.
+  EXPECT_GT(v, 0.2);
 }
 
 TEST(Surface, NonFiniteParticlesAreSkippedAndBadSettingsRejected) {
@@ -110,7 +123,8 @@ TEST(Surface, FarApartParticlesStaySparse) {
   const auto m = ls.mesh();
   EXPECT_TRUE(ss::isClosedAndOriented(m));
   const auto one = ss::meshParticles(std::vector<float>{0, 0, 0}, 1.0);
-  EXPECT_NEAR(ss::enclosedVolume(m), 2.0 * ss::enclosedVolume(one), 1e-3 * ss::enclosedVolume(m));
+  // Vertices are floats: at 10^5 their precision (~0.008) blurs the far blob's volume a little.
+  EXPECT_NEAR(ss::enclosedVolume(m), 2.0 * ss::enclosedVolume(one), 0.05 * ss::enclosedVolume(m));
 }
 
 TEST(Surface, VdbReadsBackAndItsZeroCrossingIsTheMesh) {
