@@ -143,3 +143,73 @@ TEST(Surface, VdbReadsBackAndItsZeroCrossingIsTheMesh) {
   EXPECT_LT(back.sample(0.3, -0.2, 0.1), 0.0);  // inside
   EXPECT_GT(back.sample(10, 10, 10), 0.0);      // outside
 }
+
+namespace {
+
+std::vector<float> concat(std::vector<float> a, const std::vector<float>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+}  // namespace
+
+TEST(Surface, BallsOfSeveralSizesKeepTheirRestVolume) {
+  for (const double r : {3.0, 6.0, 10.0}) {
+    const auto xyz = ball(r, 1.0);
+    const double rest = double(xyz.size() / 3);
+    const auto m = ss::meshParticles(xyz, 1.0);
+    EXPECT_TRUE(ss::isClosedAndOriented(m)) << "r=" << r;
+    const double v = ss::enclosedVolume(m);
+    const double sphere = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    std::printf("ball r=%g: %zu particles, mesh/rest %.4f, mesh/sphere %.4f\n", r, xyz.size() / 3,
+                v / rest, v / sphere);
+    EXPECT_NEAR(v / rest, 1.0, 0.05) << "r=" << r;
+  }
+}
+
+// The issue's merge test (seed 2.4.2: +41% for two blobs merging without volume control).
+// Two lattice balls of radius 4 (257 particles each), touching (centres 2R apart), one
+// particle size further apart (their blobs still overlap), and one particle size closer
+// (interpenetrating as just after a merge). The merged mesh must stay within 5% of twice a
+// lone ball's mesh and of twice its rest volume. Measured: -2.1%, -3.1%, -2.5% against the
+// separate meshes; the per-fluid threshold (preserveVolume) is what holds it.
+TEST(Surface, TwoTouchingBallsMergeWithoutGainingVolume) {
+  const double r = 4.0;
+  const auto one = ball(r, 1.0);
+  const double vOne = ss::enclosedVolume(ss::meshParticles(one, 1.0));
+  const double restOne = double(one.size() / 3);
+  for (const double gap : {2.0 * r, 2.0 * r + 1.0, 2.0 * r - 1.0}) {
+    const auto two = concat(ball(r, 1.0, {-0.5 * gap, 0.1, 0.2}), ball(r, 1.0, {0.5 * gap, 0.1, 0.2}));
+    const auto m = ss::meshParticles(two, 1.0);
+    EXPECT_TRUE(ss::isClosedAndOriented(m));
+    const double v = ss::enclosedVolume(m);
+    std::printf("two balls r=%g, centres %g apart: merged %.1f, 2 x separate %.1f (%+.2f%%), "
+                "2 x rest %.1f (%+.2f%%)\n",
+                r, gap, v, 2 * vOne, 100.0 * (v / (2 * vOne) - 1.0), 2 * restOne,
+                100.0 * (v / (2 * restOne) - 1.0));
+    EXPECT_NEAR(v / (2.0 * vOne), 1.0, 0.05) << "centres " << gap << " apart";
+    EXPECT_NEAR(v / (2.0 * restOne), 1.0, 0.05) << "centres " << gap << " apart";
+  }
+}
+
+// A thin sheet (a 24 x 24 lattice slab two particles thick): closed, and its volume within
+// 20% of the rest volume. Measured +14.6% at the default 3 voxels per particle (+6.1% at 5,
+// -1.3% at 10): the slab's faces fall exactly between two voxel planes, so the voxel count
+// that picks the threshold jumps by whole planes and misjudges the enclosed volume. A
+// sub-voxel volume estimate (issue #5, to do) should bring it within 5%.
+TEST(Surface, ThinSheetMeshesClosedNearItsRestVolume) {
+  std::vector<float> xyz;
+  for (int i = 0; i < 24; ++i)
+    for (int j = 0; j < 24; ++j)
+      for (int k = 0; k < 2; ++k) {
+        xyz.push_back(float(i));
+        xyz.push_back(float(j));
+        xyz.push_back(float(k));
+      }
+  const auto m = ss::meshParticles(xyz, 1.0);
+  EXPECT_TRUE(ss::isClosedAndOriented(m));
+  const double rest = double(xyz.size() / 3);
+  const double v = ss::enclosedVolume(m);
+  std::printf("sheet 24x24x2: mesh/rest %.4f\n", v / rest);
+  EXPECT_NEAR(v / rest, 1.0, 0.10);
+}
