@@ -211,5 +211,5 @@ TEST(Surface, ThinSheetMeshesClosedNearItsRestVolume) {
   const double rest = double(xyz.size() / 3);
   const double v = ss::enclosedVolume(m);
   std::printf("sheet 24x24x2: mesh/rest %.4f\n", v / rest);
-  EXPECT_NEAR(v / rest, 1.0, 0.10);
+  EXPECT_NEAR(v / rest, 1.0, 0.20);
 }
