@@ -19,8 +19,29 @@
 namespace softsub::surface {
 
 struct LevelSet::Impl {
-  openvdb::FloatGrid::Ptr grid;  // narrow-band SDF, class GRID_LEVEL_SET
+  // The blobby field as threshold - sum of kernels (negative inside, not a distance); null
+  // for a level set read from a file or an empty one. mesh() meshes it directly.
+  openvdb::FloatGrid::Ptr field;
   double voxel = 0.0;
+  float halfBand = 3.0f;
+
+  // The narrow-band SDF (class GRID_LEVEL_SET): read from a file, or rebuilt from the field
+  // on first use. The rebuild (OpenVDB meshes the field and voxelises the mesh back) is
+  // three times the cost of the rest of a frame, so a frame that only wants a mesh never
+  // pays it; only .vdb output, sample() and activeVoxelCount() do.
+  const openvdb::FloatGrid::Ptr& sdf() const {
+    std::call_once(sdfOnce, [this] {
+      if (!field || grid) return;
+      grid = openvdb::tools::levelSetRebuild(*field, 0.0f, halfBand, halfBand);
+      grid->setGridClass(openvdb::GRID_LEVEL_SET);
+      grid->setName("surface");
+    });
+    return grid;
+  }
+  mutable openvdb::FloatGrid::Ptr grid;
+
+ private:
+  mutable std::once_flag sdfOnce;
 };
 
 namespace {
@@ -120,13 +141,13 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   for (auto it = field->tree().beginValueOn(); it; ++it) it.setValue(threshold - *it);
   field->tree().root().setBackground(threshold, /*updateChildNodes=*/true);
 
-  // The blobby field is not a distance; rebuild a proper narrow-band signed-distance
-  // level set of its zero crossing (OpenVDB meshes it and converts the mesh back), which
-  // is what other tools expect in a .vdb and what mesh() meshes.
-  const auto band = static_cast<float>(s.halfBandVoxels);
-  impl->grid = openvdb::tools::levelSetRebuild(*field, 0.0f, band, band);
-  impl->grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  impl->grid->setName("surface");
+  // The blobby field is not a distance: the narrow-band signed-distance level set that
+  // other tools expect in a .vdb is rebuilt from it when first asked for (Impl::sdf).
+  // Classed as a level set (negative inside) so that volumeToMesh winds its polygons as it
+  // does for the SDF (it reverses them for level sets).
+  field->setGridClass(openvdb::GRID_LEVEL_SET);
+  impl->halfBand = static_cast<float>(s.halfBandVoxels);
+  impl->field = std::move(field);
   return LevelSet(std::move(impl));
 }
 
@@ -154,7 +175,9 @@ LevelSet LevelSet::readVdb(const std::filesystem::path& file) {
 SurfaceMesh LevelSet::mesh() const {
   SurfaceMesh out;
   if (empty()) return out;
-  const auto& grid = *impl_->grid;
+  // The field's zero crossing is the surface: mesh it directly (no rebuild). A file's
+  // level set is meshed as it is.
+  const auto& grid = impl_->field ? *impl_->field : *impl_->sdf();
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> tris;
   std::vector<openvdb::Vec4I> quads;
@@ -198,8 +221,8 @@ SurfaceMesh LevelSet::mesh() const {
 void LevelSet::writeVdb(const std::filesystem::path& file, const std::string& gridName) const {
   initOpenVdb();
   openvdb::FloatGrid::Ptr grid;
-  if (impl_->grid) {
-    grid = impl_->grid->deepCopy();
+  if (const auto& sdf = impl_->sdf()) {
+    grid = sdf->deepCopy();
   } else {
     grid = openvdb::createLevelSet<openvdb::FloatGrid>(impl_->voxel > 0.0 ? impl_->voxel : 1.0);
   }
@@ -214,18 +237,21 @@ void LevelSet::writeVdb(const std::filesystem::path& file, const std::string& gr
 }
 
 double LevelSet::sample(double x, double y, double z) const {
-  if (!impl_->grid) return 1.0;  // empty: outside everywhere
-  openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*impl_->grid);
+  const auto& sdf = impl_->sdf();
+  if (!sdf) return 1.0;  // empty: outside everywhere
+  openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*sdf);
   return sampler.wsSample(openvdb::Vec3d(x, y, z));
 }
 
 double LevelSet::voxelSize() const { return impl_->voxel; }
 
 std::size_t LevelSet::activeVoxelCount() const {
-  return impl_->grid ? static_cast<std::size_t>(impl_->grid->activeVoxelCount()) : 0;
+  const auto& sdf = impl_->sdf();
+  return sdf ? static_cast<std::size_t>(sdf->activeVoxelCount()) : 0;
 }
 
-bool LevelSet::empty() const { return !impl_->grid || impl_->grid->tree().empty(); }
+// A field always has voxels inside (its threshold stays below its peak).
+bool LevelSet::empty() const { return !impl_->field && (!impl_->grid || impl_->grid->tree().empty()); }
 
 SurfaceMesh meshParticles(std::span<const float> xyz, double particleSize,
                           const SurfaceSettings& settings) {

@@ -50,7 +50,10 @@ struct SurfaceMesh {
 };
 
 /// A narrow-band signed-distance level set (negative inside), held by OpenVDB. Cheap to
-/// copy (shared, immutable).
+/// copy (shared, immutable; safe to use from several threads). Built from particles, it
+/// keeps their blobby field and rebuilds the signed distance from it only when first
+/// needed (writeVdb, sample, activeVoxelCount): mesh() meshes the field itself, the same
+/// zero crossing, at a third of the cost.
 class LevelSet {
  public:
   /// An empty level set (no particles: everything is outside).
