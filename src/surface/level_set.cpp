@@ -73,6 +73,50 @@ inline int ceilInt(double v) {
   return i < v ? i + 1 : i;
 }
 
+// Refines the ranked threshold t0 so that a sub-voxel volume estimate, not a voxel count,
+// encloses `want` voxels' worth. A voxel whose value f is near the iso value t counts
+// clamp(1/2 + (f - t) / (|grad f| voxel), 0, 1): the share of it on the inside of a plane
+// through it (exact for faces parallel to the grid, which a count gets wrong by whole
+// voxel planes: a lattice sheet meshed at +15%). Voxels far above t (f >= t0 + w) count 1,
+// far below 0; t is found by bisection in [t0 - w, t0 + w].
+float subVoxelThreshold(const openvdb::FloatGrid& field, float t0, float tMax, double want) {
+  const float w = 0.5f * t0;
+  struct Near { float f, slope; };  // slope: |grad f| x voxel, in field units per voxel
+  std::vector<Near> near;
+  double full = 0.0;
+  auto acc = field.getConstAccessor();
+  for (auto it = field.tree().cbeginValueOn(); it; ++it) {
+    const float f = *it;
+    if (f >= t0 + w) { full += 1.0; continue; }
+    if (f <= t0 - w) continue;
+    const openvdb::Coord c = it.getCoord();
+    const auto d = [&](int a) {
+      openvdb::Coord up = c, down = c;
+      up[a] += 1;
+      down[a] -= 1;
+      return 0.5 * (double(acc.getValue(up)) - double(acc.getValue(down)));
+    };
+    const double gx = d(0), gy = d(1), gz = d(2);
+    near.push_back({f, static_cast<float>(std::sqrt(gx * gx + gy * gy + gz * gz))});
+  }
+  const auto volume = [&](float t) {
+    double v = full;
+    for (const Near& n : near) {
+      if (n.slope > 1e-12f) v += std::clamp(0.5 + double(n.f - t) / double(n.slope), 0.0, 1.0);
+      else if (n.f > t) v += 1.0;
+    }
+    return v;
+  };
+  float lo = std::max(1e-3f, t0 - w), hi = std::min(tMax, t0 + w);  // volume(lo) >= volume(hi)
+  if (volume(lo) < want) return lo;
+  if (volume(hi) > want) return hi;
+  for (int i = 0; i < 30; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    (volume(mid) > want ? lo : hi) = mid;
+  }
+  return 0.5f * (lo + hi);
+}
+
 }  // namespace
 
 LevelSet::LevelSet() : impl_(std::make_shared<const Impl>()) {}
@@ -166,8 +210,9 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   if (used == 0) return LevelSet(std::move(impl));  // empty: nothing inside
 
   if (s.preserveVolume) {
-    // The iso value that encloses the rest volume: the field value of the voxel ranked
-    // (rest volume / voxel volume) from the top. Voxel counting, no meshing: O(voxels).
+    // The iso value that encloses the rest volume: first the field value of the voxel
+    // ranked (rest volume / voxel volume) from the top (a voxel count, O(voxels)), then
+    // refined with a sub-voxel volume estimate near the surface. No meshing.
     std::vector<float> values;
     values.reserve(static_cast<std::size_t>(field->activeVoxelCount()));
     for (auto it = field->tree().cbeginValueOn(); it; ++it) values.push_back(*it);
@@ -179,7 +224,8 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
                      std::greater<>());
     // Stay strictly between 0 (the blob radius: the field's support) and the peak.
     const float peak = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank) + 1);
-    threshold = std::clamp(values[rank], 1e-3f, 0.999f * peak);
+    const float t0 = std::clamp(values[rank], 1e-3f, 0.999f * peak);
+    threshold = subVoxelThreshold(*field, t0, 0.999f * peak, want);
   }
 
   // Sum of kernels -> threshold - sum (negative inside, OpenVDB's level-set sign), with
