@@ -30,8 +30,9 @@ struct SurfaceSettings {
   double threshold = 0.7023;
   /// Global volume preservation (a first step towards seed 2.4.2): instead of the fixed
   /// threshold, pick the iso value at which the field encloses the fluid's rest volume
-  /// (particle count x restVolumePerParticle), by ranking the voxels' field values. This
-  /// removes the blobby field's gain (+8% to +30% for balls of 10^3 to 10^2 particles);
+  /// (particle count x restVolumePerParticle): a ranking of the voxels' field values,
+  /// refined by a sub-voxel volume estimate near the surface. This removes the blobby
+  /// field's gain (+8% to +30% for balls of 10^3 to 10^2 particles, more as blobs merge);
   /// it is one iso value for the whole fluid, not Desbrun's local control.
   bool preserveVolume = true;
   /// Rest volume of one particle; 0 (the default) means particleSize^3, the cell of a
@@ -68,7 +69,8 @@ class LevelSet {
   static LevelSet readVdb(const std::filesystem::path& file);
 
   /// The zero iso surface as a closed, consistently oriented triangle mesh (quads split
-  /// along their shorter diagonal), with normals from the level set's gradient.
+  /// along their shorter diagonal), with normals from the gradient of the field it meshes
+  /// (the blobby field for a level set built from particles).
   [[nodiscard]] SurfaceMesh mesh() const;
   /// Writes the level set as a .vdb file with one grid called gridName (throws
   /// softsub::IoError when it cannot be written).
