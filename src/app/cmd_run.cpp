@@ -24,6 +24,7 @@
 #include "scene_view.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
+#include "surface/surface_writer.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -65,7 +66,7 @@ cache::Formats checkCommandLine(const RunOptions& o) {
   checkOverride("--frames", "Frames", o.frames);
   checkOverride("--substeps", "Substeps", o.substeps);
   const cache::Formats formats = cache::parseFormats(o.formats);
-  if (o.record == 0) return {false, false, false};
+  if (o.record == 0) return {false, false, false, false, false};
   return formats;
 }
 
@@ -79,7 +80,7 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
   }
 }
 
-bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply; }
+bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
 
 std::string folderText(const std::filesystem::path& dir) {
   std::string s = dir.generic_string();
@@ -98,7 +99,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--substeps", o.substeps,
                   "Updates per frame (overrides <Simulation><Substeps>; seed: -updateNum N)");
   run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
-  run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply (any of them), all or none")
+  run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply,mesh,vdb (any of them), all (sim,pdc,ply) or none; mesh and vdb are fluid surfaces (slow)")
       ->capture_default_str();
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
@@ -131,7 +132,7 @@ int runCommand(const RunOptions& o) {
   const cache::Formats formats = checkCommandLine(o);
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
-  if (formats.pdc)
+  if (formats.pdc || formats.mesh || formats.vdb)
     for (const scene::FluidDesc& f : loaded.desc.fluids) cache::checkFileNamePart(f.name, "Fluid/Name");
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
   std::int64_t lastFrame = loaded.desc.simulation.frames;
@@ -153,9 +154,12 @@ int runCommand(const RunOptions& o) {
 
   cache::FrameWriter writer(outDir, loaded.name, formats);
   writer.setObjectMeshes(std::move(meshes));
+  // The surfaces after the cache files: a frame's mesh/ and vdb/ files come after its .sim.
+  surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb);
   LastFrame done;
   std::vector<FrameObserver*> observers;
-  if (anyFormat(formats)) observers.push_back(&writer);
+  if (formats.sim || formats.pdc || formats.ply) observers.push_back(&writer);
+  if (formats.mesh || formats.vdb) observers.push_back(&surfaces);
   observers.push_back(&done);
 
   ProgressLine progress(chatty, lastFrame, particles);

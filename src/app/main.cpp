@@ -11,6 +11,7 @@
 
 #include "cmd_fill.h"
 #include "cmd_info.h"
+#include "cmd_mesh.h"
 #include "cmd_render.h"
 #include "cmd_run.h"
 #include "cmd_schema.h"
@@ -38,12 +39,14 @@ int runApp(int argc, char** argv) {
   app::FillOptions fillOptions;
   app::RenderOptions renderOptions;
   app::ViewOptions viewOptions;
+  app::MeshOptions meshOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
   CLI::App* fill = app::addFillCommand(root, fillOptions);
   CLI::App* schema = app::addSchemaCommand(root);
   CLI::App* render = app::addRenderCommand(root, renderOptions);
   CLI::App* view = app::addViewCommand(root, viewOptions);
+  CLI::App* mesh = app::addMeshCommand(root, meshOptions);
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
@@ -73,6 +76,7 @@ int runApp(int argc, char** argv) {
   if (schema->parsed()) return app::schemaCommand();
   if (render->parsed()) return app::renderCommand(renderOptions);
   if (view->parsed()) return app::viewCommand(viewOptions);
+  if (mesh->parsed()) return app::meshCommand(meshOptions);
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }
 

@@ -13,7 +13,7 @@ namespace softsub::cache {
 namespace {
 
 constexpr std::string_view kAllowedFormats =
-    "a comma-separated list of sim, pdc, ply; or all; or none";
+    "a comma-separated list of sim, pdc, ply, mesh, vdb; or all (sim, pdc, ply); or none";
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -29,8 +29,8 @@ std::string_view trim(std::string_view s) {
 }  // namespace
 
 Formats parseFormats(std::string_view list) {
-  if (trim(list) == "none") return {false, false, false};
-  Formats f{false, false, false};
+  if (trim(list) == "none") return {false, false, false, false, false};
+  Formats f{false, false, false, false, false};
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = list.find(',', start);
@@ -42,8 +42,12 @@ Formats parseFormats(std::string_view list) {
       f.pdc = true;
     } else if (item == "ply") {
       f.ply = true;
+    } else if (item == "mesh") {
+      f.mesh = true;
+    } else if (item == "vdb") {
+      f.vdb = true;
     } else if (item == "all") {
-      f = Formats{};
+      f.sim = f.pdc = f.ply = true;
     } else if (item.empty()) {
       badFormats(fmt::format("empty format name in '{}'", list));
     } else if (item == "none") {
@@ -60,7 +64,8 @@ Formats parseFormats(std::string_view list) {
 std::string formatsToString(const Formats& formats) {
   std::string s;
   for (const auto& [on, name] : {std::pair{formats.sim, "sim"}, std::pair{formats.pdc, "pdc"},
-                                 std::pair{formats.ply, "ply"}}) {
+                                 std::pair{formats.ply, "ply"}, std::pair{formats.mesh, "mesh"},
+                                 std::pair{formats.vdb, "vdb"}}) {
     if (!on) continue;
     if (!s.empty()) s += ',';
     s += name;

@@ -16,13 +16,20 @@ struct Formats {
   bool sim = true;  ///< `<scene>.NNNN.sim` per frame
   bool pdc = true;  ///< `pdc/<Fluid>Shape.<ticks>.pdc` per fluid and frame
   bool ply = true;  ///< `ply/<scene>.NNNN.ply` per frame
+  /// `mesh/<Fluid>.NNNN.obj` per fluid and frame: the fluid's surface (module surface's
+  /// SurfaceWriter, not FrameWriter). Off by default and not part of `all`: slow.
+  bool mesh = false;
+  /// `vdb/<Fluid>.NNNN.vdb` per fluid and frame: the surface's level set (SurfaceWriter).
+  bool vdb = false;
 };
 
-/// Parses a `--formats` value: a comma-separated list of `sim`, `pdc`, `ply`, or `all`,
-/// or `none`. InputError (element "--formats") listing the allowed names otherwise.
+/// Parses a `--formats` value: a comma-separated list of `sim`, `pdc`, `ply`, `mesh`,
+/// `vdb`, or `all` (sim, pdc and ply: the surfaces are opt-in), or `none`. InputError
+/// (element "--formats") listing the allowed names otherwise.
 [[nodiscard]] Formats parseFormats(std::string_view list);
 
-/// The canonical spelling of `formats` ("sim,pdc,ply", "none", ...); parseFormats reads it.
+/// The canonical spelling of `formats` ("sim,pdc,ply", "sim,mesh", "none", ...);
+/// parseFormats reads it.
 [[nodiscard]] std::string formatsToString(const Formats& formats);
 
 /// Writes the selected cache files of every frame it is given. Folders are created on

@@ -1,0 +1,71 @@
+#include "cmd_mesh.h"
+
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cache/frame_writer.h"
+#include "core/error.h"
+#include "progress.h"
+#include "session/playback.h"
+#include "surface/surface_writer.h"
+#include "text_format.h"
+
+namespace softsub::app {
+
+CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
+  CLI::App* mesh = root.add_subcommand(
+      "mesh", "Write the fluids' surfaces (mesh/*.obj, vdb/*.vdb) of a recorded folder");
+  mesh->add_option("SIMDIR", o.folder, "The recorded folder (<scene>Sim) or one of its .sim files")->required();
+  mesh->add_option("--formats", o.formats, "Surface formats: mesh, vdb or mesh,vdb")->capture_default_str();
+  mesh->add_option("--voxel-size", o.voxelSize, "Voxel edge in scene units (default: particle size / 3)")
+      ->check(CLI::NonNegativeNumber);
+  mesh->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  return mesh;
+}
+
+int meshCommand(const MeshOptions& o) {
+  const cache::Formats formats = cache::parseFormats(o.formats);
+  if (formats.sim || formats.pdc || formats.ply || !(formats.mesh || formats.vdb))
+    throw InputError({"command line", 0, "--formats"}, fmt::format("'{}' is not a surface format list", o.formats),
+                     "mesh, vdb or mesh,vdb");
+  const session::Playback playback(o.folder);
+  surface::SurfaceSettings settings;
+  settings.voxelSize = o.voxelSize;
+  surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
+
+  const bool chatty = stderrIsTerminal() && !o.quiet;
+  if (chatty && !playback.sceneNote().empty()) fmt::print(stderr, "note: {}\n", playback.sceneNote());
+  if (chatty && !playback.scene())
+    fmt::print(stderr, "note: no scene file beside {}: default particle sizes\n", playback.folder().string());
+  const std::int64_t lastFrame = playback.frameNumbers().back();
+  std::size_t particles = 0;
+  std::optional<ProgressLine> progress;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < playback.frameCount(); ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const FrameSnapshot frame = playback.load(i);
+    if (!progress) {
+      for (const FluidSnapshot& f : frame.fluids) particles += f.ids.size();
+      progress.emplace(chatty, lastFrame, particles);
+    }
+    writer.onFrame(frame);
+    solver::FrameProgress p;
+    p.frame = frame.frame;
+    p.lastFrame = lastFrame;
+    p.writeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    progress->update(p);
+  }
+  if (progress) progress->end();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (chatty)
+    fmt::print(stderr, "done: {} meshed, {:.2f} s, output: {}\n",
+               countOf(static_cast<std::uint64_t>(playback.frameCount()), "frame"), seconds,
+               playback.folder().generic_string());
+  return static_cast<int>(ExitCode::Ok);
+}
+
+}  // namespace softsub::app

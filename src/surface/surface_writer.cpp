@@ -1,0 +1,87 @@
+#include "surface/surface_writer.h"
+
+#include <charconv>
+#include <system_error>
+
+#include "cache/atomic_file.h"
+#include "cache/naming.h"
+#include "core/error.h"
+
+namespace softsub::surface {
+namespace {
+
+/// The double whose shortest decimal is the float's shortest decimal (0.1f -> 0.1, not
+/// 0.10000000149011612): the OBJ stays as short as the float needs.
+double shortDouble(float v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  double d = static_cast<double>(v);
+  if (ec == std::errc()) std::from_chars(buf, end, d);
+  return d;
+}
+
+std::filesystem::path fileIn(const std::filesystem::path& dir, const char* folder, const std::string& fluid,
+                             std::int64_t frame, const char* extension) {
+  return dir / folder / (fluid + "." + cache::frameTag(frame) + extension);
+}
+
+}  // namespace
+
+std::filesystem::path meshPath(const std::filesystem::path& dir, const std::string& fluid, std::int64_t frame) {
+  return fileIn(dir, "mesh", fluid, frame, ".obj");
+}
+
+std::filesystem::path vdbPath(const std::filesystem::path& dir, const std::string& fluid, std::int64_t frame) {
+  return fileIn(dir, "vdb", fluid, frame, ".vdb");
+}
+
+cache::ObjectMesh toObjectMesh(const SurfaceMesh& mesh, const std::string& name) {
+  cache::ObjectMesh out;
+  out.name = name;
+  out.comment = "fluid surface";
+  out.vertices.reserve(mesh.vertices.size());
+  for (const auto& v : mesh.vertices) out.vertices.push_back({shortDouble(v[0]), shortDouble(v[1]), shortDouble(v[2])});
+  out.normals.reserve(mesh.normals.size());
+  for (const auto& n : mesh.normals) out.normals.push_back({shortDouble(n[0]), shortDouble(n[1]), shortDouble(n[2])});
+  out.triangles = mesh.triangles;
+  return out;
+}
+
+SurfaceWriter::SurfaceWriter(std::filesystem::path outputDir, bool mesh, bool vdb, SurfaceSettings settings)
+    : dir_(std::move(outputDir)), mesh_(mesh), vdb_(vdb), settings_(settings) {}
+
+void SurfaceWriter::onFrame(const FrameSnapshot& frame) {
+  written_.clear();
+  if (!mesh_ && !vdb_) return;
+  for (const FluidSnapshot& fluid : frame.fluids) cache::checkFileNamePart(fluid.name, "Fluid/Name");
+  if (!foldersReady_) {
+    if (mesh_) cache::ensureDirectory(dir_ / "mesh");
+    if (vdb_) cache::ensureDirectory(dir_ / "vdb");
+    foldersReady_ = true;
+  }
+  for (const FluidSnapshot& fluid : frame.fluids) {
+    const LevelSet level = LevelSet::fromParticles(fluid.positions, fluid.particleSize, settings_);
+    if (mesh_) {
+      std::filesystem::path path = meshPath(dir_, fluid.name, frame.frame);
+      cache::writeFileAtomic(path, cache::encodeObj(toObjectMesh(level.mesh(), fluid.name)));
+      written_.push_back(std::move(path));
+    }
+    if (vdb_) {
+      // OpenVDB writes the file itself: a temporary name in the same folder, then a rename,
+      // so a reader never sees half a file.
+      std::filesystem::path path = vdbPath(dir_, fluid.name, frame.frame);
+      std::filesystem::path temp = path;
+      temp += ".partial";
+      level.writeVdb(temp, fluid.name);
+      std::error_code ec;
+      std::filesystem::rename(temp, path, ec);
+      if (ec) {
+        std::filesystem::remove(temp, ec);
+        throw IoError("cannot write " + path.string() + ": " + ec.message());
+      }
+      written_.push_back(std::move(path));
+    }
+  }
+}
+
+}  // namespace softsub::surface
