@@ -18,7 +18,7 @@ using test::makeFrame;
 using test::ScratchDir;
 
 bool same(const Formats& a, const Formats& b) {
-  return a.sim == b.sim && a.pdc == b.pdc && a.ply == b.ply;
+  return a.sim == b.sim && a.pdc == b.pdc && a.ply == b.ply && a.mesh == b.mesh && a.vdb == b.vdb;
 }
 
 TEST(Formats, ParsesListsAllAndNone) {
@@ -29,6 +29,18 @@ TEST(Formats, ParsesListsAllAndNone) {
   EXPECT_TRUE(same(parseFormats(" sim , ply "), Formats{true, false, true}));
   EXPECT_TRUE(same(parseFormats("pdc,pdc"), Formats{false, true, false}));
   EXPECT_TRUE(same(parseFormats("pdc,all"), Formats{true, true, true}));
+}
+
+// The surfaces are opt-in (slow): `all` keeps meaning sim,pdc,ply.
+TEST(Formats, SurfacesAreOptInAndRoundTrip) {
+  EXPECT_TRUE(same(parseFormats("sim,mesh,vdb"), Formats{true, false, false, true, true}));
+  EXPECT_TRUE(same(parseFormats("all,mesh"), Formats{true, true, true, true, false}));
+  EXPECT_TRUE(same(parseFormats("vdb"), Formats{false, false, false, false, true}));
+  EXPECT_FALSE(parseFormats("all").mesh);
+  EXPECT_FALSE(parseFormats("all").vdb);
+  EXPECT_FALSE(Formats{}.mesh);
+  for (const char* list : {"sim,mesh", "mesh,vdb", "sim,pdc,ply,mesh,vdb", "none", "vdb"})
+    EXPECT_EQ(formatsToString(parseFormats(list)), list);
 }
 
 TEST(Formats, RefusesUnknownNamesListingTheAllowedOnes) {

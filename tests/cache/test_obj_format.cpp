@@ -29,6 +29,28 @@ TEST(ObjFormat, RoundTripsExactlyWithOneBasedFaces) {
   EXPECT_EQ(back.triangles, m.triangles);
 }
 
+// The fluid surfaces' OBJ: vn lines and f a//a faces, read back exactly; other packages'
+// f a/t/n faces keep their vertex.
+TEST(ObjFormat, NormalsRoundTripAndFacesWithSlashesRead) {
+  ObjectMesh m;
+  m.name = "honey";
+  m.comment = "fluid surface";
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.normals = {{0, 0, 1}, {0, 0.6, 0.8}, {0.1, 0, 1}};
+  m.triangles = {{0, 1, 2}};
+  const std::string text = encodeObj(m);
+  EXPECT_NE(text.find("# softsub fluid surface: 3 vertices, 1 triangles\n"), std::string::npos);
+  EXPECT_NE(text.find("vn 0 0.6 0.8\n"), std::string::npos);
+  EXPECT_NE(text.find("f 1//1 2//2 3//3\n"), std::string::npos);
+  const ObjectMesh back = decodeObj(text, "s.obj");
+  EXPECT_EQ(back.vertices, m.vertices);
+  EXPECT_EQ(back.normals, m.normals);
+  EXPECT_EQ(back.triangles, m.triangles);
+  EXPECT_EQ(decodeObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/4/7 2/5/8 3/6/9\n", "t.obj").triangles, m.triangles);
+  m.normals.pop_back();
+  EXPECT_THROW(static_cast<void>(encodeObj(m)), std::invalid_argument);
+}
+
 TEST(ObjFormat, RefusesBadInput) {
   ObjectMesh bad = tetrahedron();
   bad.triangles.push_back({0, 1, 9});

@@ -1,0 +1,86 @@
+// The fluids' surfaces end to end: `run --formats ...,mesh,vdb` and `softsub mesh` on a
+// recorded folder.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/obj_format.h"
+#include "surface/surface.h"
+
+namespace softsub::apptest {
+namespace {
+
+/// The decoded OBJ as the surface module's mesh type, for its checks.
+surface::SurfaceMesh asSurfaceMesh(const cache::ObjectMesh& obj) {
+  surface::SurfaceMesh m;
+  for (const auto& v : obj.vertices)
+    m.vertices.push_back({static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])});
+  for (const auto& n : obj.normals)
+    m.normals.push_back({static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])});
+  m.triangles = obj.triangles;
+  return m;
+}
+
+std::string frameName(int frame) { return "honey.000" + std::to_string(frame); }
+
+TEST(SurfaceCli, RunWritesClosedMeshesOfTheFluidsVolumeAndLevelSets) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "honey-drop.scene";
+  const RunResult r = runSoftsub("run -q --frames 2 --formats sim,mesh,vdb --out " + quote(tmp / "o") + " " +
+                                     quote(scene),
+                                 tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const double count = fluidCounts(scene).at(0);  // honey-drop: ParticleSize 1
+  EXPECT_EQ(listFiles(tmp / "o/mesh"),
+            (std::vector<std::string>{"honey.0000.obj", "honey.0001.obj", "honey.0002.obj"}));
+  for (int f = 0; f <= 2; ++f) {
+    const fs::path obj = tmp / "o/mesh" / (frameName(f) + ".obj");
+    const cache::ObjectMesh decoded = cache::decodeObj(readFile(obj), obj.string());
+    EXPECT_EQ(decoded.name, "honey");
+    ASSERT_EQ(decoded.normals.size(), decoded.vertices.size());
+    const surface::SurfaceMesh mesh = asSurfaceMesh(decoded);
+    ASSERT_FALSE(mesh.triangles.empty());
+    EXPECT_TRUE(surface::isClosedAndOriented(mesh)) << obj;
+    EXPECT_NEAR(surface::enclosedVolume(mesh), count, 0.05 * count) << obj;
+    const surface::LevelSet back = surface::LevelSet::readVdb(tmp / "o/vdb" / (frameName(f) + ".vdb"));
+    EXPECT_FALSE(back.empty());
+    EXPECT_NEAR(back.voxelSize(), 1.0 / 3.0, 1e-6);
+  }
+  // Nothing half-written is left behind.
+  EXPECT_EQ(listFiles(tmp / "o/vdb").size(), 3u);
+}
+
+TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
+  TempDir tmp;
+  fs::create_directories(tmp / "a");
+  fs::create_directories(tmp / "b");
+  const fs::path a = copyInto(examplesDir() / "honey-drop.scene", tmp / "a");
+  const fs::path b = copyInto(examplesDir() / "honey-drop.scene", tmp / "b");
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim,mesh " + quote(a), tmp.path()).code, 0);
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim " + quote(b), tmp.path()).code, 0);
+  const RunResult r = runSoftsub("mesh " + quote(tmp / "b/honey-dropSim"), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // not a terminal: no progress, no summary
+  for (int f = 0; f <= 2; ++f) {
+    const std::string name = "honey-dropSim/mesh/" + frameName(f) + ".obj";
+    EXPECT_EQ(readFile(tmp / "b" / name), readFile(tmp / "a" / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(tmp / "b/honey-dropSim/vdb"));
+  // --formats vdb and a voxel size: level sets of that voxel.
+  ASSERT_EQ(runSoftsub("mesh --formats vdb --voxel-size 0.5 " + quote(tmp / "b/honey-dropSim"), tmp.path()).code, 0);
+  EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "b/honey-dropSim/vdb/honey.0002.vdb").voxelSize(), 0.5, 1e-9);
+}
+
+TEST(SurfaceCli, MeshRefusesNonSurfaceFormatsAndMissingFrames) {
+  TempDir tmp;
+  fs::create_directories(tmp / "empty");
+  EXPECT_EQ(runSoftsub("mesh --formats sim " + quote(tmp / "empty"), tmp.path()).code, 2);
+  const RunResult r = runSoftsub("mesh " + quote(tmp / "empty"), tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_TRUE(listEntries(tmp / "empty").empty());
+}
+
+}  // namespace
+}  // namespace softsub::apptest
