@@ -73,6 +73,20 @@ TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
   EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "b/honey-dropSim/vdb/honey.0002.vdb").voxelSize(), 0.5, 1e-9);
 }
 
+TEST(SurfaceCli, MeshDrawsProgressAndASummaryAtATerminal) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim " + quote(scene), tmp.path()).code, 0);
+  const RunResult r = runSoftsubInTerminal("mesh " + quote(tmp / "honey-dropSim"), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::size_t last = r.out.find("\rframe 2/2 | ");
+  ASSERT_NE(last, std::string::npos) << r.out;
+  const std::size_t done = r.out.find("\r\ndone: 3 frames meshed, ");
+  ASSERT_NE(done, std::string::npos) << r.out;
+  EXPECT_LT(last, done);
+  EXPECT_EQ(listFiles(tmp / "honey-dropSim/mesh").size(), 3u);
+}
+
 TEST(SurfaceCli, MeshRefusesNonSurfaceFormatsAndMissingFrames) {
   TempDir tmp;
   fs::create_directories(tmp / "empty");
