@@ -188,8 +188,7 @@ int renderCommand(const RenderOptions& o) {
   std::unique_ptr<PictureMaker> maker;  // outlives the observer that draws with it
   std::optional<PictureObserver> observer;
   PictureObserver* pictures = nullptr;
-  std::error_code ec;
-  const bool recorded = !o.input.empty() && std::filesystem::is_directory(o.input, ec);
+  const bool recorded = isRecording(o.input);
   const auto start = std::chrono::steady_clock::now();
   if (recorded) {
     RecordedFrames rec = openRecorded(o.input);
