@@ -84,25 +84,26 @@ std::filesystem::path picturePath(const std::filesystem::path& dir, std::string_
 FrameRange parseFrameRange(const std::string& text, const std::string& option) {
   FrameRange r;
   if (text.empty()) return r;
-  const std::string allowed = "a:b (first and last frame, inclusive), a: (from a), :b (up to b) or a (one frame), "
-                              "frame numbers >= 0";
+  auto refuse = [&](std::string_view problem) -> InputError {
+    return InputError({"command line", 0, option}, fmt::format("'{}' {}", text, problem),
+                      "a:b (first and last frame, inclusive), a: (from a), :b (up to b) or a (one frame), "
+                      "frame numbers >= 0");
+  };
   const auto colon = text.find(':');
   const std::string_view a = std::string_view(text).substr(0, colon);
   const std::string_view b = colon == std::string::npos ? a : std::string_view(text).substr(colon + 1);
+  if (a.empty() && b.empty()) throw refuse("is not a frame range");
   if (!a.empty()) {
     const auto v = parseFrameNumber(a);
-    if (!v) throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
+    if (!v) throw refuse("is not a frame range");
     r.first = *v;
   }
   if (!b.empty()) {
     const auto v = parseFrameNumber(b);
-    if (!v) throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
+    if (!v) throw refuse("is not a frame range");
     r.last = *v;
   }
-  if (a.empty() && b.empty())
-    throw InputError({"command line", 0, option}, fmt::format("'{}' is not a frame range", text), allowed);
-  if (r.last && *r.last < r.first)
-    throw InputError({"command line", 0, option}, fmt::format("'{}' ends before it starts", text), allowed);
+  if (r.last && *r.last < r.first) throw refuse("ends before it starts");
   return r;
 }
 
@@ -188,8 +189,7 @@ int renderCommand(const RenderOptions& o) {
   std::unique_ptr<PictureMaker> maker;  // outlives the observer that draws with it
   std::optional<PictureObserver> observer;
   PictureObserver* pictures = nullptr;
-  std::error_code ec;
-  const bool recorded = !o.input.empty() && std::filesystem::is_directory(o.input, ec);
+  const bool recorded = isRecording(o.input);
   const auto start = std::chrono::steady_clock::now();
   if (recorded) {
     RecordedFrames rec = openRecorded(o.input);

@@ -1,5 +1,8 @@
 #include "render_playback.h"
 
+#include <cctype>
+#include <filesystem>
+
 #include "render/renderer.h"
 #include "scene_view.h"
 #include "session/playback.h"
@@ -21,6 +24,16 @@ RecordedFrames::RecordedFrames(const std::string& folder)
   }
   camera = playback_->scene() ? cameraOf(playback_->scene()->camera)
                               : render::frameBounds(render::sceneBounds(scene, load(0)), 16.0 / 9.0);
+}
+
+bool isRecording(const std::string& input) {
+  if (input.empty()) return false;
+  std::error_code ec;
+  const std::filesystem::path p(input);
+  if (std::filesystem::is_directory(p, ec)) return true;
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".sim";
 }
 
 RecordedFrames::~RecordedFrames() = default;

@@ -39,6 +39,10 @@ class RecordedFrames {
   std::unique_ptr<session::Playback> playback_;
 };
 
+/// True when `input` names a recording rather than a scene: a folder, or a `.sim` file
+/// (which plays its folder).
+[[nodiscard]] bool isRecording(const std::string& input);
+
 /// Opens a recorded folder (see RecordedFrames).
 [[nodiscard]] inline RecordedFrames openRecorded(const std::string& folder) { return RecordedFrames(folder); }
 

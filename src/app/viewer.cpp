@@ -13,16 +13,13 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "cache/atomic_file.h"
-#include "cache/frame_writer.h"
 #include "core/error.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render_playback.h"
-#include "scene/compile.h"
 #include "scene_source.h"
 #include "scene_view.h"
 #include "session/live_session.h"
-#include "session/parameters.h"
 
 namespace softsub::app {
 
@@ -64,8 +61,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     const std::vector<session::ScriptCommand> commands = session::readScriptFile(options.script);
     script_.assign(commands.begin(), commands.end());
   }
-  std::error_code ec;
-  if (!options.input.empty() && std::filesystem::is_directory(options.input, ec)) {
+  if (isRecording(options.input)) {
     recorded_ = std::make_unique<RecordedFrames>(options.input);
     sceneName_ = recorded_->sceneName;
     renderScene_ = recorded_->scene;

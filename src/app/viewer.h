@@ -63,6 +63,7 @@ class Viewer {
   void drawInteractionsPanel();
   void drawPlaybackPanel();
   void drawHelpOverlay();
+  void drawTransport(const char* restartLabel);  // play/pause, step, restart buttons
   void applyEdits();              // after a widget changed the scene description
   void refreshStability();
 

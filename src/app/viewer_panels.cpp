@@ -284,14 +284,7 @@ void Viewer::drawSimulationPanel() {
     ImGui::Text("frame %lld   t = %.3f s   %s", static_cast<long long>(f.frame), f.time, paused_ ? "(paused)" : "");
   ImGui::Text("%zu particles   %.2f ms/step   %.0f fps", model.particleCount(), session_->lastStepMilliseconds(),
               uiFps_);
-  if (ImGui::Button(paused_ ? "play" : "pause")) paused_ = !paused_;
-  ImGui::SameLine();
-  if (ImGui::Button("step")) {
-    stepOnce_ = true;
-    paused_ = true;
-  }
-  ImGui::SameLine();
-  if (ImGui::Button("restart")) restart();
+  drawTransport("restart");
   ImGui::SameLine();
   if (ImGui::Button("write caches")) writeCaches();
   ImGui::TextDisabled("%s", session_->recordingNote().c_str());
@@ -404,8 +397,13 @@ void Viewer::drawPlaybackPanel() {
     playIndex_ = static_cast<std::size_t>(index);
     playFrame_ = recorded_->load(playIndex_);
   }
+  drawTransport("first frame");
+}
+
+void Viewer::drawTransport(const char* restartLabel) {
   if (ImGui::Button(paused_ ? "play" : "pause")) {
-    if (paused_ && playIndex_ + 1 >= recorded_->frameCount()) restart();
+    // Playing a recording that has reached its end starts it again.
+    if (paused_ && !live() && playIndex_ + 1 >= recorded_->frameCount()) restart();
     paused_ = !paused_;
   }
   ImGui::SameLine();
@@ -414,7 +412,7 @@ void Viewer::drawPlaybackPanel() {
     paused_ = true;
   }
   ImGui::SameLine();
-  if (ImGui::Button("first frame")) restart();
+  if (ImGui::Button(restartLabel)) restart();
 }
 
 void Viewer::drawHelpOverlay() {

@@ -102,7 +102,9 @@ void main() {
   gl_ClipDistance[0] = dot(clipPlane, world);
   vec4 v = view * world;
   vPoint = v.xyz;
-  vNormal = mat3(view) * (transpose(inverse(mat3(model))) * normal);
+  // model is a rotation times a uniform scale (times the floor mirror): it keeps normals'
+  // directions, so no inverse-transpose per vertex; the fragment shader normalises.
+  vNormal = mat3(view) * (mat3(model) * normal);
   gl_Position = proj * v;
 })";
 
@@ -417,6 +419,20 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
 
+  // Every fluid's positions go up once per draw; the mirrored pass reuses them.
+  std::size_t totalBytes = 0;
+  for (const FluidSnapshot& f : frame.fluids) totalBytes += f.positions.size() * sizeof(float);
+  glBindBuffer(GL_ARRAY_BUFFER, g.instanceVbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(totalBytes), nullptr, GL_STREAM_DRAW);
+  std::size_t uploaded = 0;
+  for (const FluidSnapshot& f : frame.fluids) {
+    const std::size_t bytes = f.positions.size() * sizeof(float);
+    if (bytes > 0)
+      glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(uploaded), static_cast<GLsizeiptr>(bytes),
+                      f.positions.data());
+    uploaded += bytes;
+  }
+
   const bool haveFloor = options.floor && scene_.container.has_value();
   const float floorY = haveFloor ? scene_.container->lo[1] : 0.0f;
 
@@ -429,11 +445,13 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
     setFloat(g.sphere, "mirrorY", floorY);
     glBindVertexArray(g.sphereVao);
     glBindBuffer(GL_ARRAY_BUFFER, g.instanceVbo);
+    std::size_t offset = 0;  // bytes: every fluid's positions, one after another (uploaded above)
     for (const FluidSnapshot& f : frame.fluids) {
+      const std::size_t bytes = f.positions.size() * sizeof(float);
+      const std::size_t at = offset;
+      offset += bytes;
       if (f.count() == 0) continue;
-      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(f.positions.size() * sizeof(float)),
-                   f.positions.data(), GL_STREAM_DRAW);
-      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(at));
       setFloat(g.sphere, "radius", 0.5f * f.particleSize * options.particleScale);
       Eigen::Vector3f colour = toF(f.colour);
       if (mirrored) colour *= 0.8f;

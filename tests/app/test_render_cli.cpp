@@ -181,7 +181,7 @@ TEST(RenderCli, ARecordedFolderIsDrawnLikeTheScene) {
 
 // Shells complete folder names with a trailing slash: the scene beside the folder must
 // still be found (colours, container, camera).
-TEST(RenderCli, AFolderNamedWithATrailingSlashIsDrawnTheSame) {
+TEST(RenderCli, AFolderNamedWithATrailingSlashOrByOneOfItsFramesIsDrawnTheSame) {
   TempDir tmp;
   const fs::path recorded = recordTwoFluids(tmp.path());
   const RunResult a = render(recorded, tmp / "plain", "--frames 1", tmp.path());
@@ -191,6 +191,13 @@ TEST(RenderCli, AFolderNamedWithATrailingSlashIsDrawnTheSame) {
   ASSERT_EQ(listFiles(tmp / "slash"), pictureNames("two-fluids", 1, 1));
   EXPECT_EQ(differingPixels(readPng(tmp / "plain" / "two-fluids.0001.png"),
                             readPng(tmp / "slash" / "two-fluids.0001.png")),
+            0u);
+  // One .sim file of the recording plays its folder.
+  const RunResult c = render(recorded / "two-fluids.0000.sim", tmp / "file", "--frames 1", tmp.path());
+  ASSERT_EQ(c.code, 0) << c.err;
+  ASSERT_EQ(listFiles(tmp / "file"), pictureNames("two-fluids", 1, 1));
+  EXPECT_EQ(differingPixels(readPng(tmp / "plain" / "two-fluids.0001.png"),
+                            readPng(tmp / "file" / "two-fluids.0001.png")),
             0u);
 }
 

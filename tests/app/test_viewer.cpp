@@ -97,6 +97,7 @@ TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
   writeText(script, fmt::format("# thicker honey, three frames, keep both\n"
                                 "set fluid {} Viscosity {}\n"
                                 "frames 3\n"
+                                "key S                 # the recorded frames 0..3 as caches\n"
                                 "save tweaked.scene\n"
                                 "screenshot shot.png   # the window, panel included\n"
                                 "quit\n",
@@ -122,6 +123,17 @@ TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
   expectScreenshotShows(tmp / "shot.png", cameraOf(original), frameAfter(expected, 3));
   // The original scene file is untouched.
   EXPECT_EQ(readFile(scene), readFile(examplesDir() / "honey-drop.scene"));
+
+  // S wrote the recorded frames 0..3 into the default output folder; frame 3 holds the
+  // tweaked simulation's positions exactly.
+  const fs::path out = tmp / "honey-dropSim";
+  for (int f = 0; f <= 3; ++f)
+    EXPECT_TRUE(fs::is_regular_file(out / fmt::format("honey-drop.{:04}.sim", f))) << f;
+  EXPECT_FALSE(fs::exists(out / "honey-drop.0004.sim"));
+  const FrameSnapshot written = cache::readSimFile(out / "honey-drop.0003.sim").frame;
+  const FrameSnapshot simulated = frameAfter(expected, 3);
+  ASSERT_EQ(written.fluids.size(), 1u);
+  EXPECT_EQ(written.fluids[0].positions, simulated.fluids.at(0).positions);
 }
 
 TEST(Viewer, AColourChangeShowsInTheNextScreenshot) {
