@@ -21,7 +21,7 @@ CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
       "mesh", "Write the fluids' surfaces (mesh/*.obj, vdb/*.vdb) of a recorded folder");
   mesh->add_option("SIMDIR", o.folder, "The recorded folder (<scene>Sim) or one of its .sim files")->required();
   mesh->add_option("--formats", o.formats, "Surface formats: mesh, vdb or mesh,vdb")->capture_default_str();
-  mesh->add_option("--voxel-size", o.voxelSize, "Voxel edge in scene units (default: particle size / 3)")
+  mesh->add_option("--voxel-size", o.voxelSize, "Voxel edge in scene units (default: particle size / 2)")
       ->check(CLI::NonNegativeNumber);
   mesh->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return mesh;

@@ -12,7 +12,7 @@ namespace softsub::app {
 struct MeshOptions {
   std::string folder;              ///< the recorded folder (or one of its .sim files)
   std::string formats = "mesh";    ///< mesh, vdb or both (comma-separated)
-  double voxelSize = 0.0;          ///< 0: particle size / 3 (SurfaceSettings's default)
+  double voxelSize = 0.0;          ///< 0: particle size / 2 (SurfaceSettings's default)
   bool quiet = false;              ///< nothing on stderr but errors
 };
 

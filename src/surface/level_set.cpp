@@ -4,10 +4,14 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
 #include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/LevelSetRebuild.h>
+#include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <mutex>
@@ -19,20 +23,39 @@
 namespace softsub::surface {
 
 struct LevelSet::Impl {
-  // The blobby field as threshold - sum of kernels (negative inside, not a distance); null
-  // for a level set read from a file or an empty one. mesh() meshes it directly.
+  // The blobby field as minus the sum of kernels (more negative inside, not a distance);
+  // null for a level set read from a file or an empty one. Its surface is where it
+  // crosses `iso` (minus the threshold). mesh() meshes it directly.
   openvdb::FloatGrid::Ptr field;
+  float iso = 0.0f;
   double voxel = 0.0;
   float halfBand = 3.0f;
 
-  // The narrow-band SDF (class GRID_LEVEL_SET): read from a file, or rebuilt from the field
-  // on first use. The rebuild (OpenVDB meshes the field and voxelises the mesh back) is
-  // three times the cost of the rest of a frame, so a frame that only wants a mesh never
-  // pays it; only .vdb output, sample() and activeVoxelCount() do.
+  // OpenVDB's polygons of the surface (volumeToMesh, adaptivity 0: uniform quads and the
+  // odd triangle, which keeps the mesh watertight), made once and shared by mesh() and the
+  // signed-distance rebuild.
+  struct Polygons {
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+  };
+  const Polygons& polygons() const {
+    std::call_once(polygonsOnce, [this] {
+      const openvdb::FloatGrid& g = field ? *field : *grid;
+      openvdb::tools::volumeToMesh(g, polys.points, polys.tris, polys.quads, field ? iso : 0.0, 0.0);
+    });
+    return polys;
+  }
+
+  // The narrow-band SDF (class GRID_LEVEL_SET): read from a file, or built on first use
+  // from the polygons (meshToLevelSet, the slowest step of a frame: a frame that only
+  // wants a mesh never pays it; only .vdb output, sample() and activeVoxelCount() do).
   const openvdb::FloatGrid::Ptr& sdf() const {
     std::call_once(sdfOnce, [this] {
       if (!field || grid) return;
-      grid = openvdb::tools::levelSetRebuild(*field, 0.0f, halfBand, halfBand);
+      const Polygons& p = polygons();
+      grid = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(field->transform(), p.points, p.tris, p.quads,
+                                                               halfBand);
       grid->setGridClass(openvdb::GRID_LEVEL_SET);
       grid->setName("surface");
     });
@@ -41,7 +64,8 @@ struct LevelSet::Impl {
   mutable openvdb::FloatGrid::Ptr grid;
 
  private:
-  mutable std::once_flag sdfOnce;
+  mutable Polygons polys;
+  mutable std::once_flag polygonsOnce, sdfOnce;
 };
 
 namespace {
@@ -53,14 +77,8 @@ void initOpenVdb() {
 
 // Grid coordinates must stay well inside int32: refuse points beyond 2^30 voxels.
 constexpr double kMaxIndex = 1073741824.0;
-
-// One particle's kernel as a function of (distance / blob radius)^2: smooth, 1 at the
-// centre, 0 with zero slope at the blob radius (the usual Wyvill-style polynomial).
-// Clamped at 0 beyond the radius, so that a run of voxels needs no branch.
-inline float kernel(float s2) {
-  const float u = std::max(0.0f, 1.0f - s2);
-  return u * u * u;
-}
+// At most this many voxels per blob radius (a blob of about 10^6 voxels).
+constexpr double kMaxRadiusVoxels = 64.0;
 
 // floor and ceil for |v| < 2^31 without a libm call (baseline x86-64 has no rounding
 // instruction, and these run once per column of voxels).
@@ -73,44 +91,230 @@ inline int ceilInt(double v) {
   return i < v ? i + 1 : i;
 }
 
-// Refines the ranked threshold t0 so that a sub-voxel volume estimate, not a voxel count,
-// encloses `want` voxels' worth. A voxel whose value f is near the iso value t counts
-// clamp(1/2 + (f - t) / (|grad f| voxel), 0, 1): the share of it on the inside of a plane
-// through it (exact for faces parallel to the grid, which a count gets wrong by whole
-// voxel planes: a lattice sheet meshed at +15%). Voxels far above t (f >= t0 + w) count 1,
-// far below 0; t is found by bisection in [t0 - w, t0 + w].
-float subVoxelThreshold(const openvdb::FloatGrid& field, float t0, float tMax, double want) {
-  const float w = 0.5f * t0;
-  struct Near { float f, slope; };  // slope: |grad f| x voxel, in field units per voxel
-  std::vector<Near> near;
-  double full = 0.0;
-  auto acc = field.getConstAccessor();
-  for (auto it = field.tree().cbeginValueOn(); it; ++it) {
-    const float f = *it;
-    if (f >= t0 + w) { full += 1.0; continue; }
-    if (f <= t0 - w) continue;
-    const openvdb::Coord c = it.getCoord();
-    const auto d = [&](int a) {
-      openvdb::Coord up = c, down = c;
-      up[a] += 1;
-      down[a] -= 1;
-      return 0.5 * (double(acc.getValue(up)) - double(acc.getValue(down)));
-    };
-    const double gx = d(0), gy = d(1), gz = d(2);
-    near.push_back({f, static_cast<float>(std::sqrt(gx * gx + gy * gy + gz * gz))});
+// A leaf of the field grid by its index (voxel index >> 3 per axis).
+struct LeafKey {
+  int x, y, z;
+  auto operator<=>(const LeafKey&) const = default;
+};
+
+using Leaf = openvdb::FloatTree::LeafNodeType;
+
+// One particle's kernel as a function of s^2 = (distance / blob radius)^2:
+// (max(0, 1 - s^2))^3, smooth, 1 at the centre, 0 with zero slope at the blob radius (the
+// usual Wyvill-style polynomial), exactly 0 beyond it so that a run of voxels needs no
+// branch. Four floats in one SSE register (GCC/Clang vector extension): the kernel over a column
+// of a leaf in two steps, one code path for any x86-64 or ARM target.
+using Float4 = float __attribute__((vector_size(16)));
+
+// Sums the particles' kernels into the leaves of `field` (empty on entry) and stores
+// minus the sum (negative inside, as OpenVDB's level sets). Returns the leaves, in a fixed
+// order, and sets `peak` to the largest sum. keys[j] is the
+// leaf particle j's centre is in, sorted (stable: a bin keeps particle order); q holds the
+// centres in voxel units, in the same order. Each leaf is one task that gathers from the
+// bins around it in a fixed order (bins in key order, particles in bin order), so the
+// sums, hence the grid, are bitwise the same for any number of threads; nothing is shared
+// between tasks. Voxels with a positive sum (reached by a blob) are the active ones.
+std::vector<Leaf*> fillLeaves(openvdb::FloatGrid& field, const std::vector<LeafKey>& keys,
+                              const std::vector<double>& q, double radiusVoxels, float& peak) {
+  static_assert(Leaf::DIM == 8);
+  struct Bin {
+    LeafKey key;
+    std::size_t begin, end;
+  };
+  std::vector<Bin> bins;
+  for (std::size_t j = 0; j < keys.size(); ++j) {
+    if (bins.empty() || bins.back().key != keys[j]) bins.push_back({keys[j], j, j});
+    bins.back().end = j + 1;
   }
-  const auto volume = [&](float t) {
-    double v = full;
-    for (const Near& n : near) {
-      if (n.slope > 1e-12f) v += std::clamp(0.5 + double(n.f - t) / double(n.slope), 0.0, 1.0);
-      else if (n.f > t) v += 1.0;
+  // A blob reaches voxels up to ceil(radius) from its centre's voxel: that many leaves
+  // (rounded up) around its bin.
+  const int reach = (ceilInt(radiusVoxels) + 7) / 8;
+  std::vector<LeafKey> targets;
+  targets.reserve(bins.size() * static_cast<std::size_t>((2 * reach + 1) * (2 * reach + 1) * (2 * reach + 1)));
+  for (const Bin& b : bins)
+    for (int dx = -reach; dx <= reach; ++dx)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) targets.push_back({b.key.x + dx, b.key.y + dy, b.key.z + dz});
+  std::sort(targets.begin(), targets.end());
+  targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+
+  const double invR = 1.0 / radiusVoxels;
+  const double invR2 = invR * invR;
+  const auto step = static_cast<float>(invR);  // one voxel, in blob radii
+  const Float4 kLane = {0.0f, 1.0f, 2.0f, 3.0f};
+  std::vector<std::unique_ptr<Leaf>> leaves(targets.size());
+  std::vector<float> leafPeak(targets.size(), 0.0f);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, targets.size(), 16), [&](const auto& range) {
+    alignas(64) float sum[Leaf::SIZE];
+    for (std::size_t t = range.begin(); t != range.end(); ++t) {
+      const LeafKey key = targets[t];
+      const int ox = key.x * 8, oy = key.y * 8, oz = key.z * 8;
+      std::fill(std::begin(sum), std::end(sum), 0.0f);
+      bool touched = false;
+      for (int dx = -reach; dx <= reach; ++dx)
+        for (int dy = -reach; dy <= reach; ++dy)
+          for (int dz = -reach; dz <= reach; ++dz) {
+            const LeafKey near{key.x + dx, key.y + dy, key.z + dz};
+            const auto bin = std::lower_bound(bins.begin(), bins.end(), near,
+                                              [](const Bin& b, const LeafKey& k) { return b.key < k; });
+            if (bin == bins.end() || bin->key != near) continue;
+            for (std::size_t j = bin->begin; j < bin->end; ++j) {
+              const double px = q[3 * j], py = q[3 * j + 1], pz = q[3 * j + 2];
+              const int x0 = std::max(ceilInt(px - radiusVoxels), ox), x1 = std::min(floorInt(px + radiusVoxels), ox + 7);
+              const int y0 = std::max(ceilInt(py - radiusVoxels), oy), y1 = std::min(floorInt(py + radiusVoxels), oy + 7);
+              if (x0 > x1 || y0 > y1) continue;
+              const int z0 = std::max(ceilInt(pz - radiusVoxels), oz), z1 = std::min(floorInt(pz + radiusVoxels), oz + 7);
+              if (z0 > z1) continue;
+              // The halves of each column (z 0-3, 4-7 in the leaf) the blob reaches.
+              const int halfBegin = z0 - oz < 4 ? 0 : 4, halfEnd = z1 - oz < 4 ? 4 : 8;
+              // A whole column of 8 per (x, y), in float relative to the particle: the
+              // kernel is exactly 0 beyond the blob radius, so no clipping along z and a
+              // fixed-length loop that vectorises.
+              const auto dz0 = static_cast<float>((oz - pz) * invR);
+              for (int x = x0; x <= x1; ++x) {
+                const double ddx = x - px;
+                for (int y = y0; y <= y1; ++y) {
+                  const double ddy = y - py;
+                  const double sxyd = (ddx * ddx + ddy * ddy) * invR2;
+                  if (sxyd >= 1.0) continue;
+                  const auto sxy = static_cast<float>(sxyd);
+                  float* column = sum + ((x - ox) << 6) + ((y - oy) << 3);
+                  for (int half = halfBegin; half < halfEnd; half += 4) {
+                    const Float4 tz = dz0 + (kLane + static_cast<float>(half)) * step;
+                    Float4 u = 1.0f - (sxy + tz * tz);
+                    u = u > 0.0f ? u : 0.0f;
+                    Float4 c;
+                    std::memcpy(&c, column + half, sizeof c);
+                    c += u * u * u;
+                    std::memcpy(column + half, &c, sizeof c);
+                  }
+                  touched = true;
+                }
+              }
+            }
+          }
+      if (!touched) continue;
+      auto leaf = std::make_unique<Leaf>(openvdb::Coord(ox, oy, oz), 0.0f, false);
+      float* data = leaf->buffer().data();
+      float top = 0.0f;
+      for (openvdb::Index n = 0; n < Leaf::SIZE; ++n) {
+        data[n] = -sum[n];
+        if (sum[n] > 0.0f) leaf->setActiveState(n, true);
+        top = std::max(top, sum[n]);
+      }
+      if (top > 0.0f) {
+        leaves[t] = std::move(leaf);
+        leafPeak[t] = top;
+      }
     }
+  });
+  std::vector<Leaf*> out;
+  out.reserve(leaves.size());
+  peak = 0.0f;
+  for (std::size_t t = 0; t < leaves.size(); ++t)
+    if (leaves[t]) {
+      peak = std::max(peak, leafPeak[t]);
+      out.push_back(leaves[t].get());
+      field.tree().addLeaf(leaves[t].release());
+    }
+  return out;
+}
+
+// The iso value (a sum of kernels) at which the field encloses `want` voxels' worth of
+// volume. First a histogram of the voxels' sums (4096 bins up to the peak) gives t0, the
+// value with about `want` voxels above it. Then a sub-voxel volume estimate refines it: a
+// voxel whose sum f is near the iso value t counts clamp(1/2 + (f - t) / (|grad f| voxel),
+// 0, 1), the share of it on the inside of a plane through it (exact for faces parallel to
+// the grid, which a count gets wrong by whole voxel planes: a lattice sheet meshed at
+// +15%). Voxels far above t (f >= t0 + w) count 1, far below 0; t is found by bisection in
+// [t0 - w, t0 + w]. Every pass runs over leaves in parallel; counts are integers and the
+// fractional sums are taken in fixed chunks added in order, so the result does not depend
+// on the number of threads.
+float volumeThreshold(const openvdb::FloatGrid& field, const std::vector<Leaf*>& leaves, float peak, double want) {
+  using Range = tbb::blocked_range<std::size_t>;
+  constexpr int kBins = 4096;
+  const float toBin = static_cast<float>(kBins) / peak;
+  using Histogram = std::vector<std::uint64_t>;
+  const Histogram histogram = tbb::parallel_reduce(
+      Range(0, leaves.size(), 64), Histogram(kBins, 0),
+      [&](const Range& r, Histogram h) {
+        for (std::size_t l = r.begin(); l != r.end(); ++l)
+          for (auto it = leaves[l]->cbeginValueOn(); it; ++it)
+            ++h[static_cast<std::size_t>(std::min(static_cast<int>(-*it * toBin), kBins - 1))];
+        return h;
+      },
+      [](Histogram a, const Histogram& b) {
+        for (int i = 0; i < kBins; ++i) a[i] += b[i];
+        return a;
+      });
+  int bin = kBins - 1;
+  for (double above = 0.0; bin > 0; --bin) {
+    above += static_cast<double>(histogram[bin]);
+    if (above >= want) break;
+  }
+  // Stay strictly between 0 (the blob radius: the field's support) and the peak.
+  const float tMax = 0.999f * peak;
+  const float t0 = std::clamp(static_cast<float>(bin) / toBin, 1e-3f, tMax);
+  const float w = 0.5f * t0;
+
+  struct Near { float f, slope; };  // slope: |grad f| x voxel, in field units per voxel
+  std::vector<std::vector<Near>> nearOf(leaves.size());
+  std::vector<std::uint64_t> fullOf(leaves.size(), 0);
+  tbb::parallel_for(Range(0, leaves.size(), 16), [&](const Range& r) {
+    auto acc = field.getConstAccessor();
+    for (std::size_t l = r.begin(); l != r.end(); ++l) {
+      const Leaf& leaf = *leaves[l];
+      const float* data = leaf.buffer().data();
+      for (auto it = leaf.cbeginValueOn(); it; ++it) {
+        const float f = -*it;
+        if (f >= t0 + w) { ++fullOf[l]; continue; }
+        if (f <= t0 - w) continue;
+        const openvdb::Index n = it.pos();
+        const openvdb::Coord local = Leaf::offsetToLocalCoord(n);
+        // Central differences of the sum, inside the leaf's buffer where possible.
+        const auto d = [&](int a, openvdb::Index stride) {
+          const auto at = [&](int delta) -> double {
+            const int c = local[a] + delta;
+            if (c >= 0 && c < 8) return -double(data[delta > 0 ? n + stride : n - stride]);
+            openvdb::Coord g = leaf.origin() + local;
+            g[a] += delta;
+            return -double(acc.getValue(g));
+          };
+          return 0.5 * (at(1) - at(-1));
+        };
+        const double gx = d(0, 64), gy = d(1, 8), gz = d(2, 1);
+        nearOf[l].push_back({f, static_cast<float>(std::sqrt(gx * gx + gy * gy + gz * gz))});
+      }
+    }
+  });
+  double full = 0.0;
+  std::vector<Near> near;
+  for (std::size_t l = 0; l < leaves.size(); ++l) {
+    full += static_cast<double>(fullOf[l]);
+    near.insert(near.end(), nearOf[l].begin(), nearOf[l].end());
+  }
+  constexpr std::size_t kChunk = 8192;
+  std::vector<double> chunkSum((near.size() + kChunk - 1) / kChunk);
+  const auto volume = [&](float t) {
+    tbb::parallel_for(Range(0, chunkSum.size()), [&](const Range& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+        double v = 0.0;
+        for (std::size_t i = c * kChunk; i < std::min(near.size(), (c + 1) * kChunk); ++i) {
+          const Near& n = near[i];
+          if (n.slope > 1e-12f) v += std::clamp(0.5 + double(n.f - t) / double(n.slope), 0.0, 1.0);
+          else if (n.f > t) v += 1.0;
+        }
+        chunkSum[c] = v;
+      }
+    });
+    double v = full;
+    for (double c : chunkSum) v += c;
     return v;
   };
   float lo = std::max(1e-3f, t0 - w), hi = std::min(tMax, t0 + w);  // volume(lo) >= volume(hi)
   if (volume(lo) < want) return lo;
   if (volume(hi) > want) return hi;
-  for (int i = 0; i < 30; ++i) {
+  for (int i = 0; i < 24; ++i) {
     const float mid = 0.5f * (lo + hi);
     (volume(mid) > want ? lo : hi) = mid;
   }
@@ -135,103 +339,64 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   initOpenVdb();
 
   auto impl = std::make_shared<Impl>();
-  impl->voxel = s.voxelSize > 0.0 ? s.voxelSize : particleSize / 3.0;
+  impl->voxel = s.voxelSize > 0.0 ? s.voxelSize : particleSize / 2.0;
   const double vx = impl->voxel;
   const double radius = s.radiusScale * particleSize;  // blob radius
-  const double r2 = radius * radius;
   auto threshold = static_cast<float>(s.threshold);
 
-  // The field phi = threshold - sum of kernels, accumulated sparsely: only voxels within
-  // a blob radius of some particle are touched, so far-apart particles cost
-  // (2 * radius / voxel)^3 voxels each, not their bounding box.
+  // The field phi = threshold - sum of kernels, accumulated sparsely: only the 8^3 leaves
+  // within a blob radius of some particle exist, so far-apart particles cost their blobs'
+  // voxels, not their bounding box.
   auto field = openvdb::FloatGrid::create(0.0f);
   field->setTransform(openvdb::math::Transform::createLinearTransform(vx));
-  // Each particle writes straight into the buffers of the 8^3 leaves its blob overlaps (2
-  // to 3 per axis): one cached leaf look-up per leaf instead of a tree access per voxel,
-  // per (x, y) column only the z run inside the blob, and the active mask set once at the
-  // end (the voxels with a positive sum). Sums are taken in particle order (the same
-  // float results as a voxel-by-voxel accumulation).
-  using Leaf = openvdb::FloatTree::LeafNodeType;
-  constexpr int kLeafDim = static_cast<int>(Leaf::DIM);
-  auto acc = field->getAccessor();
   const double inv = 1.0 / vx;
-  const double invR2 = 1.0 / r2;
-  const double invRadius = 1.0 / radius;
-  const auto step = static_cast<float>(vx * invRadius);  // one voxel, in blob radii
+  const double radiusVoxels = radius * inv;
+  // Cost and memory grow as (radius / voxel)^3 per particle: refuse a voxel so small that
+  // one blob alone would span millions of voxels.
+  if (radiusVoxels > kMaxRadiusVoxels)
+    throw std::invalid_argument("surface: voxel size too small for the particle size (allowed: voxel >= blob radius / " +
+                                std::to_string(static_cast<int>(kMaxRadiusVoxels)) + ")");
+  std::vector<double> q;  // finite particles in voxel units, grouped by bin (below)
+  std::vector<Leaf*> leaves;
+  float peak = 0.0f;
   std::size_t used = 0;
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
-    const double p[3] = {xyz[i], xyz[i + 1], xyz[i + 2]};
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
-    for (double c : p)
-      if (std::abs(c * inv) > kMaxIndex)
-        throw std::invalid_argument("surface: a particle is too far from the origin for the voxel grid");
-    ++used;
-    int lo[3], hi[3];  // voxels within the blob radius along each axis
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = ceilInt((p[a] - radius) * inv);
-      hi[a] = floorInt((p[a] + radius) * inv);
+  {
+    // Bin the particles by the leaf their centre is in (bins keep particle order).
+    std::vector<LeafKey> binOf;
+    std::vector<double> qAll;
+    qAll.reserve(xyz.size());
+    binOf.reserve(xyz.size() / 3);
+    for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) {
+      const double p[3] = {xyz[i] * inv, xyz[i + 1] * inv, xyz[i + 2] * inv};
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+      for (double c : p)
+        if (std::abs(c) > kMaxIndex)
+          throw std::invalid_argument("surface: a particle is too far from the origin for the voxel grid");
+      qAll.insert(qAll.end(), p, p + 3);
+      binOf.push_back({floorInt(p[0]) >> 3, floorInt(p[1]) >> 3, floorInt(p[2]) >> 3});
     }
-    // Leaf origins are multiples of kLeafDim (>> is floor division for negatives in C++20).
-    for (int lx = lo[0] >> 3; lx <= hi[0] >> 3; ++lx)
-      for (int ly = lo[1] >> 3; ly <= hi[1] >> 3; ++ly)
-        for (int lz = lo[2] >> 3; lz <= hi[2] >> 3; ++lz) {
-          const openvdb::Coord origin(lx * kLeafDim, ly * kLeafDim, lz * kLeafDim);
-          float* data = acc.touchLeaf(origin)->buffer().data();
-          const int x0 = std::max(lo[0], origin.x()), x1 = std::min(hi[0], origin.x() + kLeafDim - 1);
-          const int y0 = std::max(lo[1], origin.y()), y1 = std::min(hi[1], origin.y() + kLeafDim - 1);
-          const int zl = std::max(lo[2], origin.z()), zh = std::min(hi[2], origin.z() + kLeafDim - 1);
-          for (int x = x0; x <= x1; ++x) {
-            const double dx = x * vx - p[0];
-            for (int y = y0; y <= y1; ++y) {
-              const double dy = y * vx - p[1];
-              const double rest = r2 - dx * dx - dy * dy;
-              if (rest <= 0.0) continue;
-              const double half = std::sqrt(rest);
-              const int z0 = std::max(zl, ceilInt((p[2] - half) * inv));
-              const int z1 = std::min(zh, floorInt((p[2] + half) * inv));
-              // The run in float, relative to the particle (short enough to vectorise).
-              const auto sxy = static_cast<float>((dx * dx + dy * dy) * invR2);
-              const auto dz0 = static_cast<float>((z0 * vx - p[2]) * invRadius);
-              float* column = data + Leaf::coordToOffset(openvdb::Coord(x, y, z0));
-              for (int k = 0; k <= z1 - z0; ++k) {
-                const float t = dz0 + static_cast<float>(k) * step;
-                column[k] += kernel(sxy + t * t);
-              }
-            }
-          }
-        }
+    used = binOf.size();
+    if (used == 0) return LevelSet(std::move(impl));  // empty: nothing inside
+    std::vector<std::size_t> order(used);
+    for (std::size_t i = 0; i < used; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return binOf[a] < binOf[b]; });
+    q.resize(3 * used);
+    std::vector<LeafKey> keys(used);
+    for (std::size_t j = 0; j < used; ++j) {
+      std::copy_n(&qAll[3 * order[j]], 3, &q[3 * j]);
+      keys[j] = binOf[order[j]];
+    }
+    leaves = fillLeaves(*field, keys, q, radiusVoxels, peak);
   }
-  // The field's support: the voxels a blob reached (a positive sum) are the active ones.
-  for (auto leaf = field->tree().beginLeaf(); leaf; ++leaf) {
-    const float* data = leaf->buffer().data();
-    for (openvdb::Index n = 0; n < Leaf::SIZE; ++n)
-      if (data[n] > 0.0f) leaf->setActiveState(n, true);
-  }
-  if (used == 0) return LevelSet(std::move(impl));  // empty: nothing inside
-
   if (s.preserveVolume) {
-    // The iso value that encloses the rest volume: first the field value of the voxel
-    // ranked (rest volume / voxel volume) from the top (a voxel count, O(voxels)), then
-    // refined with a sub-voxel volume estimate near the surface. No meshing.
-    std::vector<float> values;
-    values.reserve(static_cast<std::size_t>(field->activeVoxelCount()));
-    for (auto it = field->tree().cbeginValueOn(); it; ++it) values.push_back(*it);
+    // The iso value that encloses the rest volume (no meshing involved).
     const double perParticle =
         s.restVolumePerParticle > 0.0 ? s.restVolumePerParticle : particleSize * particleSize * particleSize;
-    const double want = double(used) * perParticle / (vx * vx * vx);
-    const auto rank = static_cast<std::size_t>(std::clamp(want, 1.0, double(values.size())) - 1.0);
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank), values.end(),
-                     std::greater<>());
-    // Stay strictly between 0 (the blob radius: the field's support) and the peak.
-    const float peak = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank) + 1);
-    const float t0 = std::clamp(values[rank], 1e-3f, 0.999f * peak);
-    threshold = subVoxelThreshold(*field, t0, 0.999f * peak, want);
+    threshold = volumeThreshold(*field, leaves, peak, double(used) * perParticle / (vx * vx * vx));
   }
-
-  // Sum of kernels -> threshold - sum (negative inside, OpenVDB's level-set sign), with
-  // the background (everything never touched) outside at +threshold.
-  for (auto it = field->tree().beginValueOn(); it; ++it) it.setValue(threshold - *it);
-  field->tree().root().setBackground(threshold, /*updateChildNodes=*/true);
+  // The field holds minus the sums, so its surface is at minus the threshold; everything
+  // never touched is the background 0, outside.
+  impl->iso = -threshold;
 
   // The blobby field is not a distance: the narrow-band signed-distance level set that
   // other tools expect in a .vdb is rebuilt from it when first asked for (Impl::sdf).
@@ -267,14 +432,10 @@ LevelSet LevelSet::readVdb(const std::filesystem::path& file) {
 SurfaceMesh LevelSet::mesh() const {
   SurfaceMesh out;
   if (empty()) return out;
-  // The field's zero crossing is the surface: mesh it directly (no rebuild). A file's
-  // level set is meshed as it is.
+  // The field's crossing of its iso value is the surface: mesh it directly (no rebuild).
+  // A file's level set is meshed at zero.
   const auto& grid = impl_->field ? *impl_->field : *impl_->sdf();
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> tris;
-  std::vector<openvdb::Vec4I> quads;
-  // Adaptivity 0: uniform quads, which keeps the mesh watertight.
-  openvdb::tools::volumeToMesh(grid, points, tris, quads, 0.0, 0.0);
+  const auto& [points, tris, quads] = impl_->polygons();
 
   out.vertices.reserve(points.size());
   for (const auto& p : points) out.vertices.push_back({p[0], p[1], p[2]});
@@ -294,19 +455,24 @@ SurfaceMesh LevelSet::mesh() const {
     }
   }
 
-  // Normals: the level set's gradient (central differences, half a voxel apart).
-  openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(grid);
+  // Normals: the level set's gradient (central differences, half a voxel apart), one
+  // vertex per index, in parallel (each task with its own cached accessor).
   const double h = 0.5 * impl_->voxel;
-  out.normals.reserve(points.size());
-  for (const auto& p : points) {
-    const openvdb::Vec3d c(p[0], p[1], p[2]);
-    openvdb::Vec3d g(sampler.wsSample(c + openvdb::Vec3d(h, 0, 0)) - sampler.wsSample(c - openvdb::Vec3d(h, 0, 0)),
-                     sampler.wsSample(c + openvdb::Vec3d(0, h, 0)) - sampler.wsSample(c - openvdb::Vec3d(0, h, 0)),
-                     sampler.wsSample(c + openvdb::Vec3d(0, 0, h)) - sampler.wsSample(c - openvdb::Vec3d(0, 0, h)));
-    const double len = g.length();
-    if (len > 0.0) g /= len; else g = openvdb::Vec3d(0, 0, 1);
-    out.normals.push_back({static_cast<float>(g[0]), static_cast<float>(g[1]), static_cast<float>(g[2])});
-  }
+  out.normals.resize(points.size());
+  using Range = tbb::blocked_range<std::size_t>;
+  tbb::parallel_for(Range(0, points.size(), 1024), [&](const Range& r) {
+    const auto acc = grid.getConstAccessor();
+    const openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sampler(
+        acc, grid.transform());
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const openvdb::Vec3d c(points[i][0], points[i][1], points[i][2]);
+      const auto diff = [&](const openvdb::Vec3d& e) { return sampler.wsSample(c + e) - sampler.wsSample(c - e); };
+      openvdb::Vec3d g(diff({h, 0, 0}), diff({0, h, 0}), diff({0, 0, h}));
+      const double len = g.length();
+      if (len > 0.0) g /= len; else g = openvdb::Vec3d(0, 0, 1);
+      out.normals[i] = {static_cast<float>(g[0]), static_cast<float>(g[1]), static_cast<float>(g[2])};
+    }
+  });
   return out;
 }
 

@@ -17,8 +17,9 @@ namespace softsub::surface {
 /// the seed's Maya rule (blob radius 1.5 x the particle diameter, threshold half of the
 /// blob "size").
 struct SurfaceSettings {
-  /// Edge of a voxel. 0 (the default) means particle size / 3: three voxels across a
-  /// particle, enough for a ball of a few particles to mesh as a ball.
+  /// Edge of a voxel. 0 (the default) means particle size / 2: two voxels across a
+  /// particle (balls of 3+ particles in radius mesh within 3% of their volume; a third of
+  /// the particle size costs 2.5x as much for finer splashes).
   double voxelSize = 0.0;
   /// Blob radius (support of each particle's kernel) as a multiple of the particle
   /// diameter. Seed 3.5.1: 1.5.
@@ -52,9 +53,10 @@ struct SurfaceMesh {
 
 /// A narrow-band signed-distance level set (negative inside), held by OpenVDB. Cheap to
 /// copy (shared, immutable; safe to use from several threads). Built from particles, it
-/// keeps their blobby field and rebuilds the signed distance from it only when first
-/// needed (writeVdb, sample, activeVoxelCount): mesh() meshes the field itself, the same
-/// zero crossing, at a third of the cost.
+/// keeps their blobby field and builds the signed distance (OpenVDB's meshToLevelSet on
+/// the field's polygons) only when first needed (writeVdb, sample, activeVoxelCount):
+/// mesh() meshes the field itself, the same surface, without that cost. Built in parallel
+/// (TBB) and bitwise the same for any number of threads.
 class LevelSet {
  public:
   /// An empty level set (no particles: everything is outside).
