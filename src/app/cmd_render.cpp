@@ -45,11 +45,17 @@ constexpr int kMaxSide = 16384;
 class PictureObserver : public FrameObserver {
  public:
   PictureObserver(PictureMaker& maker, render::Camera camera, std::filesystem::path out, std::string scene,
-                  FrameRange range)
-      : maker_(maker), camera_(std::move(camera)), out_(std::move(out)), scene_(std::move(scene)), range_(range) {}
+                  FrameRange range, std::optional<double> surfaceVoxel)
+      : maker_(maker),
+        camera_(std::move(camera)),
+        out_(std::move(out)),
+        scene_(std::move(scene)),
+        range_(range),
+        surfaceVoxel_(surfaceVoxel) {}
   void onFrame(const FrameSnapshot& frame) override {
     if (!range_.contains(frame.frame)) return;
-    maker_.write(picturePath(out_, scene_, frame.frame), frame, camera_);
+    const auto surfaces = surfaceVoxel_ ? surfacesOf(frame, *surfaceVoxel_) : std::vector<render::RenderSurface>{};
+    maker_.write(picturePath(out_, scene_, frame.frame), frame, camera_, surfaces);
     if (first < 0) first = frame.frame;
     last = frame.frame;
     ++written;
@@ -62,6 +68,7 @@ class PictureObserver : public FrameObserver {
   std::filesystem::path out_;
   std::string scene_;
   FrameRange range_;
+  std::optional<double> surfaceVoxel_;  // set: draw surfaces with this voxel (0: default)
 };
 
 void checkSize(const RenderOptions& o) {
@@ -163,6 +170,10 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps>")->check(CLI::Range(1, 100000));
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--surface", o.surface,
+                "Draw each fluid's surface (as softsub mesh makes it) instead of its particles");
+  cmd->add_option("--voxel-size", o.voxelSize, "Surface voxel edge in scene units (default: particle size / 2)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
 }
@@ -170,6 +181,9 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
 int renderCommand(const RenderOptions& o) {
   checkSize(o);
   const FrameRange range = parseFrameRange(o.frames, "--frames");
+  if (o.voxelSize > 0.0 && !o.surface)
+    throw InputError({"command line", 0, "--voxel-size"}, "is for surfaces", "add --surface, or leave out --voxel-size");
+  const std::optional<double> surfaceVoxel = o.surface ? std::optional<double>(o.voxelSize) : std::nullopt;
   if (!o.movie.empty() && findFfmpeg().empty())
     throw InputError({"command line", 0, "--movie"}, "ffmpeg is not installed", "install ffmpeg, or leave out --movie");
   const bool chatty = stderrIsTerminal() && !o.quiet;
@@ -205,7 +219,7 @@ int renderCommand(const RenderOptions& o) {
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
-    observer.emplace(*maker, rec.camera, out, sceneName, range);
+    observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceVoxel);
     pictures = &*observer;
     ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
     for (std::size_t i = 0; i < rec.frameCount(); ++i) {
@@ -233,7 +247,7 @@ int renderCommand(const RenderOptions& o) {
     solver::Simulation sim(compiled.model, std::move(compiled.state));
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
-    observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range);
+    observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceVoxel);
     pictures = &*observer;
     FrameObserver* observers[] = {pictures};
     ProgressLine progress(chatty, lastFrame, particles);

@@ -24,6 +24,8 @@ struct RenderOptions {
   std::optional<std::int64_t> substeps;   ///< overrides the scene's Substeps
   std::uint64_t maxParticles = 0;         ///< as `run --max-particles`
   bool quiet = false;                     ///< nothing on stderr but errors
+  bool surface = false;                   ///< draw each fluid's surface instead of its particles
+  double voxelSize = 0.0;                 ///< surface voxel, scene units; 0: half the particle size
 };
 
 /// An inclusive frame range; `last` unset means "to the end".

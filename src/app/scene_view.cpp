@@ -3,6 +3,7 @@
 #include "cache/atomic_file.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
+#include "surface/surface.h"
 
 namespace softsub::app {
 
@@ -55,14 +56,34 @@ PictureMaker::~PictureMaker() {
   renderer_.reset();
 }
 
-render::Image PictureMaker::draw(const FrameSnapshot& frame, const render::Camera& camera) {
+render::Image PictureMaker::draw(const FrameSnapshot& frame, const render::Camera& camera,
+                                 std::span<const render::RenderSurface> surfaces) {
   target_->bind();
-  renderer_->draw(frame, camera, width_, height_);
+  renderer_->draw(frame, camera, width_, height_, {}, surfaces);
   return target_->read();
 }
 
-void PictureMaker::write(const std::filesystem::path& path, const FrameSnapshot& frame, const render::Camera& camera) {
-  cache::writeFileAtomic(path, render::encodePng(draw(frame, camera)));
+void PictureMaker::write(const std::filesystem::path& path, const FrameSnapshot& frame, const render::Camera& camera,
+                         std::span<const render::RenderSurface> surfaces) {
+  cache::writeFileAtomic(path, render::encodePng(draw(frame, camera, surfaces)));
+}
+
+std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, double voxelSize) {
+  std::vector<render::RenderSurface> out;
+  surface::SurfaceSettings settings;
+  settings.voxelSize = voxelSize;
+  for (std::size_t i = 0; i < frame.fluids.size(); ++i) {
+    const FluidSnapshot& f = frame.fluids[i];
+    if (f.count() == 0) continue;
+    surface::SurfaceMesh m = surface::meshParticles(f.positions, f.particleSize, settings);
+    render::RenderSurface s;
+    s.fluid = i;
+    s.vertices = std::move(m.vertices);
+    s.normals = std::move(m.normals);
+    s.triangles = std::move(m.triangles);
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 std::string PictureMaker::description() const { return context_->description(); }

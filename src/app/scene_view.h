@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ namespace softsub::app {
 /// The scene's `<Camera>` as the renderer's camera.
 [[nodiscard]] render::Camera cameraOf(const scene::CameraDesc& camera);
 
+/// Each non-empty fluid's surface in `frame` (softsub::surface's blobby level set, at its
+/// particle size, `voxelSize` 0 = its default), for drawing instead of the particles.
+[[nodiscard]] std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, double voxelSize = 0.0);
+
 /// Draws frames into pictures off-screen (EGL), all of one size.
 class PictureMaker {
  public:
@@ -41,10 +46,12 @@ class PictureMaker {
   PictureMaker(const PictureMaker&) = delete;
   PictureMaker& operator=(const PictureMaker&) = delete;
 
-  /// The frame seen by `camera`.
-  [[nodiscard]] render::Image draw(const FrameSnapshot& frame, const render::Camera& camera);
+  /// The frame seen by `camera`; `surfaces` replace their fluids' particles.
+  [[nodiscard]] render::Image draw(const FrameSnapshot& frame, const render::Camera& camera,
+                                   std::span<const render::RenderSurface> surfaces = {});
   /// Draws and writes a PNG atomically (IoError when it cannot be written).
-  void write(const std::filesystem::path& path, const FrameSnapshot& frame, const render::Camera& camera);
+  void write(const std::filesystem::path& path, const FrameSnapshot& frame, const render::Camera& camera,
+             std::span<const render::RenderSurface> surfaces = {});
   /// The OpenGL implementation in use ("llvmpipe ..., OpenGL 4.5 ...").
   [[nodiscard]] std::string description() const;
 

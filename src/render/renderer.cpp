@@ -248,6 +248,7 @@ struct Renderer::Gl {
   GLuint floorVao = 0, floorVbo = 0;
   GLuint lineVao = 0, lineVbo = 0;
   GLsizei lineVertices = 0;
+  GLuint surfaceVao = 0, surfaceVbo = 0, surfaceEbo = 0;  // the frame's surfaces, streamed
   std::unordered_map<std::string, MeshBuffers> meshes;
 
   ~Gl() {
@@ -255,10 +256,10 @@ struct Renderer::Gl {
       glDeleteBuffers(1, &m.vbo);
       glDeleteVertexArrays(1, &m.vao);
     }
-    const GLuint buffers[] = {quadVbo, instanceVbo, floorVbo, lineVbo};
-    glDeleteBuffers(4, buffers);
-    const GLuint arrays[] = {emptyVao, sphereVao, floorVao, lineVao};
-    glDeleteVertexArrays(4, arrays);
+    const GLuint buffers[] = {quadVbo, instanceVbo, floorVbo, lineVbo, surfaceVbo, surfaceEbo};
+    glDeleteBuffers(6, buffers);
+    const GLuint arrays[] = {emptyVao, sphereVao, floorVao, lineVao, surfaceVao};
+    glDeleteVertexArrays(5, arrays);
     for (GLuint p : {background, sphere, mesh, floor, line}) glDeleteProgram(p);
   }
 };
@@ -285,6 +286,17 @@ Renderer::Renderer() : gl_(std::make_unique<Gl>()) {
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
   glVertexAttribDivisor(1, 1);
+
+  // Surfaces: positions then normals of each, one after another in one stream buffer;
+  // attribute offsets are set per surface when drawing.
+  glGenVertexArrays(1, &g.surfaceVao);
+  glBindVertexArray(g.surfaceVao);
+  glGenBuffers(1, &g.surfaceVbo);
+  glBindBuffer(GL_ARRAY_BUFFER, g.surfaceVbo);
+  glGenBuffers(1, &g.surfaceEbo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.surfaceEbo);  // part of the VAO's state
+  glEnableVertexAttribArray(0);
+  glEnableVertexAttribArray(1);
 
   glGenVertexArrays(1, &g.floorVao);
   glBindVertexArray(g.floorVao);
@@ -393,9 +405,14 @@ Aabb sceneBounds(const RenderScene& scene, const FrameSnapshot& frame) {
 }
 
 void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width, int height,
-                    const DrawOptions& options) {
+                    const DrawOptions& options, std::span<const RenderSurface> surfaces) {
   Gl& g = *gl_;
   bounds_ = sceneBounds(scene_, frame);
+  std::vector<bool> asSurface(frame.fluids.size(), false);
+  for (const RenderSurface& s : surfaces) {
+    if (s.fluid < asSurface.size()) asSurface[s.fluid] = true;
+    for (const auto& v : s.vertices) bounds_.add(v[0], v[1], v[2]);
+  }
   const auto [near, far] = clipRange(camera, bounds_);
   const Eigen::Matrix4f view = camera.view();
   const Eigen::Matrix4f proj = perspective(camera.fovY, static_cast<double>(width) / std::max(height, 1), near, far);
@@ -433,6 +450,42 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
     uploaded += bytes;
   }
 
+  // The surfaces go up once too: per surface its positions, then its normals, and its
+  // triangles' indices in the element buffer (skipped if malformed: a normal missing or an
+  // index out of range).
+  struct SurfaceRange {
+    const RenderSurface* surface;
+    std::size_t vertexBytes, normalBytes, indexBytes;
+  };
+  std::vector<SurfaceRange> surfaceRanges;
+  {
+    std::size_t vbytes = 0, ibytes = 0;
+    for (const RenderSurface& s : surfaces) {
+      if (s.fluid >= frame.fluids.size() || s.normals.size() != s.vertices.size() || s.triangles.empty()) continue;
+      const bool inRange = std::all_of(s.triangles.begin(), s.triangles.end(), [&](const auto& t) {
+        return t[0] < s.vertices.size() && t[1] < s.vertices.size() && t[2] < s.vertices.size();
+      });
+      if (!inRange) continue;
+      const std::size_t n = s.vertices.size() * sizeof(s.vertices[0]);
+      surfaceRanges.push_back({&s, vbytes, vbytes + n, ibytes});
+      vbytes += 2 * n;
+      ibytes += s.triangles.size() * sizeof(s.triangles[0]);
+    }
+    glBindVertexArray(g.surfaceVao);
+    glBindBuffer(GL_ARRAY_BUFFER, g.surfaceVbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vbytes), nullptr, GL_STREAM_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(ibytes), nullptr, GL_STREAM_DRAW);
+    for (const SurfaceRange& r : surfaceRanges) {
+      const RenderSurface& s = *r.surface;
+      const auto n = static_cast<GLsizeiptr>(s.vertices.size() * sizeof(s.vertices[0]));
+      glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(r.vertexBytes), n, s.vertices.data());
+      glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(r.normalBytes), n, s.normals.data());
+      glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(r.indexBytes),
+                      static_cast<GLsizeiptr>(s.triangles.size() * sizeof(s.triangles[0])), s.triangles.data());
+    }
+    glBindVertexArray(0);
+  }
+
   const bool haveFloor = options.floor && scene_.container.has_value();
   const float floorY = haveFloor ? scene_.container->lo[1] : 0.0f;
 
@@ -450,7 +503,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
       const std::size_t bytes = f.positions.size() * sizeof(float);
       const std::size_t at = offset;
       offset += bytes;
-      if (f.count() == 0) continue;
+      if (f.count() == 0 || asSurface[static_cast<std::size_t>(&f - frame.fluids.data())]) continue;
       glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(at));
       setFloat(g.sphere, "radius", 0.5f * f.particleSize * options.particleScale);
       Eigen::Vector3f colour = toF(f.colour);
@@ -481,6 +534,34 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
       setVec3(g.mesh, "colour", mirrored ? Eigen::Vector3f(it->second.colour * 0.8f) : it->second.colour);
       glBindVertexArray(it->second.vao);
       glDrawArrays(GL_TRIANGLES, 0, it->second.vertices);
+    }
+    glDisable(GL_CLIP_DISTANCE0);
+  };
+
+  auto drawSurfaces = [&](bool mirrored) {
+    if (surfaceRanges.empty()) return;
+    glUseProgram(g.mesh);
+    setMat4(g.mesh, "view", view);
+    setMat4(g.mesh, "proj", proj);
+    setVec3(g.mesh, "lightView", lightView);
+    setVec4(g.mesh, "clipPlane", mirrored ? Eigen::Vector4f(0, -1, 0, floorY) : Eigen::Vector4f(0, 0, 0, 1));
+    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
+    if (mirrored) {
+      model(1, 1) = -1;
+      model(1, 3) = 2 * floorY;
+    }
+    setMat4(g.mesh, "model", model);
+    glEnable(GL_CLIP_DISTANCE0);
+    glBindVertexArray(g.surfaceVao);
+    glBindBuffer(GL_ARRAY_BUFFER, g.surfaceVbo);  // attribute pointers read this binding
+    for (const SurfaceRange& r : surfaceRanges) {
+      Eigen::Vector3f colour = toF(frame.fluids[r.surface->fluid].colour);
+      if (mirrored) colour *= 0.8f;
+      setVec3(g.mesh, "colour", colour);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(r.vertexBytes));
+      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(r.normalBytes));
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * r.surface->triangles.size()), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(r.indexBytes));
     }
     glDisable(GL_CLIP_DISTANCE0);
   };
@@ -518,6 +599,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     drawParticles(true);
     drawObjects(true);
+    drawSurfaces(true);
     glDisable(GL_STENCIL_TEST);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_BLEND);
@@ -530,6 +612,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
 
   drawParticles(false);
   drawObjects(false);
+  drawSurfaces(false);
 
   if (options.container && g.lineVertices > 0) {
     glUseProgram(g.line);

@@ -4,6 +4,7 @@
 /// and the floor (mirrored when the scene's environment is Reflective). The same code
 /// draws into the viewer's window and into an off-screen framebuffer.
 #include <memory>
+#include <span>
 
 #include "core/aabb.h"
 #include "core/snapshot.h"
@@ -36,8 +37,10 @@ class Renderer {
   /// Draws `frame` seen by `camera` into the currently bound framebuffer, viewport
   /// (0, 0, width, height), clearing it first. The framebuffer needs a depth buffer, and a
   /// stencil buffer for the mirrored floor.
+  /// `surfaces` replace their fluids' particles (a fluid may have none: it is drawn as
+  /// particles); their vertices count in bounds() like particles.
   void draw(const FrameSnapshot& frame, const Camera& camera, int width, int height,
-            const DrawOptions& options = {});
+            const DrawOptions& options = {}, std::span<const RenderSurface> surfaces = {});
 
   /// The box holding the container and the last drawn frame's particles and objects
   /// (orbit pivot, clip range).
