@@ -10,6 +10,7 @@
 #include "cache/frame_writer.h"
 #include "core/error.h"
 #include "progress.h"
+#include "scene_view.h"
 #include "session/playback.h"
 #include "surface/surface_writer.h"
 #include "text_format.h"
@@ -33,6 +34,7 @@ int meshCommand(const MeshOptions& o) {
     throw InputError({"command line", 0, "--formats"}, fmt::format("'{}' is not a surface format list", o.formats),
                      "mesh, vdb or mesh,vdb");
   const session::Playback playback(o.folder);
+  checkSurfaceVoxel(o.voxelSize, playback.load(0), "--voxel-size");
   surface::SurfaceSettings settings;
   settings.voxelSize = o.voxelSize;
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);

@@ -216,6 +216,7 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("no frame of {} is in '{}'", o.input, o.frames),
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
+    if (o.surface) checkSurfaceVoxel(o.voxelSize, rec.load(0), "--voxel-size");
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
@@ -245,6 +246,7 @@ int renderCommand(const RenderOptions& o) {
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
+    if (o.surface) checkSurfaceVoxel(o.voxelSize, sim.snapshot(), "--voxel-size");
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceVoxel);

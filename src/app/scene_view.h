@@ -37,6 +37,10 @@ namespace softsub::app {
 /// particle size, `voxelSize` 0 = its default), for drawing instead of the particles.
 [[nodiscard]] std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, double voxelSize = 0.0);
 
+/// InputError naming `option` when `voxelSize` (> 0) is too small to mesh a fluid of
+/// `frame` (below surface::minimumVoxelSize for its particle size).
+void checkSurfaceVoxel(double voxelSize, const FrameSnapshot& frame, const std::string& option);
+
 /// Draws frames into pictures off-screen (EGL), all of one size.
 class PictureMaker {
  public:

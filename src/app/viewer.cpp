@@ -45,7 +45,7 @@ Vec3 pivotOf(const Aabb& box, const render::Camera& camera) {
 
 int keyOf(const std::string& name) {
   static const std::pair<const char*, int> keys[] = {
-      {"R", GLFW_KEY_R},       {"S", GLFW_KEY_S},         {"N", GLFW_KEY_N},       {"SPACE", GLFW_KEY_SPACE},
+      {"R", GLFW_KEY_R},       {"S", GLFW_KEY_S},         {"N", GLFW_KEY_N},       {"M", GLFW_KEY_M},  {"SPACE", GLFW_KEY_SPACE},
       {"UP", GLFW_KEY_UP},     {"DOWN", GLFW_KEY_DOWN},   {"LEFT", GLFW_KEY_LEFT}, {"RIGHT", GLFW_KEY_RIGHT},
       {"H", GLFW_KEY_H},       {"P", GLFW_KEY_P},         {"C", GLFW_KEY_C},       {"ESCAPE", GLFW_KEY_ESCAPE}};
   for (const auto& [n, k] : keys)
@@ -161,6 +161,7 @@ void Viewer::onKey(int key, int action, int /*mods*/) {
     case GLFW_KEY_H:
     case GLFW_KEY_F1: showHelp_ = !showHelp_; break;
     case GLFW_KEY_C: camera_ = startCamera_; break;
+    case GLFW_KEY_M: surfaces_ = !surfaces_; break;
     case GLFW_KEY_P:
       screenshot(std::filesystem::path(fmt::format("{}.screenshot.{:04d}.png", sceneName_, frame().frame)));
       break;
@@ -356,7 +357,9 @@ int Viewer::run() {
     glfwGetFramebufferSize(window_, &w, &h);
     if (w > 0 && h > 0) {
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      renderer_->draw(frame(), camera_, w, h);
+      const FrameSnapshot& shown = frame();
+      const auto surfaces = surfaces_ ? surfacesOf(shown) : std::vector<render::RenderSurface>{};
+      renderer_->draw(shown, camera_, w, h, {}, surfaces);
     }
     drawPanels();
     ImGui::Render();

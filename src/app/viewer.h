@@ -84,6 +84,7 @@ class Viewer {
   bool paused_ = false;
   bool stepOnce_ = false;
   bool showHelp_ = false;
+  bool surfaces_ = false;  // draw each fluid's surface (meshed every drawn frame) instead of particles
   bool editsPending_ = false;
   bool quit_ = false;
   int exitCode_ = 0;

@@ -413,6 +413,8 @@ void Viewer::drawTransport(const char* restartLabel) {
   }
   ImGui::SameLine();
   if (ImGui::Button(restartLabel)) restart();
+  ImGui::SameLine();
+  ImGui::Checkbox("surfaces (M)", &surfaces_);
 }
 
 void Viewer::drawHelpOverlay() {
@@ -430,6 +432,7 @@ void Viewer::drawHelpOverlay() {
       {"N", "step one frame"},
       {"R", "restart (recording: first frame)"},
       {"S", "write the recorded frames as caches"},
+      {"M", "surfaces instead of particles"},
       {"P", "screenshot <scene>.screenshot.NNNN.png"},
       {"H / F1", "this help"},
       {"Esc / Q", "quit"},

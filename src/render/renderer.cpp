@@ -408,11 +408,10 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
                     const DrawOptions& options, std::span<const RenderSurface> surfaces) {
   Gl& g = *gl_;
   bounds_ = sceneBounds(scene_, frame);
-  std::vector<bool> asSurface(frame.fluids.size(), false);
-  for (const RenderSurface& s : surfaces) {
-    if (s.fluid < asSurface.size()) asSurface[s.fluid] = true;
-    for (const auto& v : s.vertices) bounds_.add(v[0], v[1], v[2]);
-  }
+  for (const RenderSurface& s : surfaces)
+    for (const auto& v : s.vertices)
+      if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2])) bounds_.add(v[0], v[1], v[2]);
+
   const auto [near, far] = clipRange(camera, bounds_);
   const Eigen::Matrix4f view = camera.view();
   const Eigen::Matrix4f proj = perspective(camera.fovY, static_cast<double>(width) / std::max(height, 1), near, far);
@@ -458,6 +457,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
     std::size_t vertexBytes, normalBytes, indexBytes;
   };
   std::vector<SurfaceRange> surfaceRanges;
+  std::vector<bool> asSurface(frame.fluids.size(), false);  // drawn as a surface, not particles
   {
     std::size_t vbytes = 0, ibytes = 0;
     for (const RenderSurface& s : surfaces) {
@@ -468,6 +468,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
       if (!inRange) continue;
       const std::size_t n = s.vertices.size() * sizeof(s.vertices[0]);
       surfaceRanges.push_back({&s, vbytes, vbytes + n, ibytes});
+      asSurface[s.fluid] = true;
       vbytes += 2 * n;
       ibytes += s.triangles.size() * sizeof(s.triangles[0]);
     }

@@ -16,7 +16,7 @@ namespace softsub::session {
 namespace {
 
 constexpr const char* kCommands =
-    "set fluid <Name> <Tag> <value>, set simulation <Tag> <value>, key <R|S|N|SPACE|UP|DOWN|LEFT|RIGHT>, "
+    "set fluid <Name> <Tag> <value>, set simulation <Tag> <value>, key <R|S|N|M|SPACE|UP|DOWN|LEFT|RIGHT>, "
     "frames <N>, wait <N>, save <path.scene>, screenshot <path.png>, quit";
 
 constexpr std::int64_t kMostFrames = 1'000'000;

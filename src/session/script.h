@@ -6,7 +6,7 @@
 /// # comments start with '#'; blank lines are ignored
 /// set fluid honey Viscosity 8       # set fluid <Name> <Tag> <value...>
 /// set simulation Gravity 0 -3 0     # set simulation <Tag> <value...>
-/// key SPACE                         # key <R|S|N|SPACE|UP|DOWN|LEFT|RIGHT>
+/// key SPACE                         # key <R|S|N|M|SPACE|UP|DOWN|LEFT|RIGHT>
 /// frames 24                         # advance 24 frames
 /// wait 10                           # let 10 drawn frames pass
 /// save tweaked.scene                # save <path.scene>
@@ -27,7 +27,7 @@ namespace softsub::session {
 enum class ScriptCommandKind : std::uint8_t {
   SetFluid,       ///< args: fluid name, tag, value text
   SetSimulation,  ///< args: tag, value text
-  Key,            ///< args: the key's name, upper case (R S N SPACE UP DOWN LEFT RIGHT)
+  Key,            ///< args: the key's name, upper case (R S N M SPACE UP DOWN LEFT RIGHT)
   Frames,         ///< args: how many frames to advance (>= 1)
   Wait,           ///< args: how many drawn frames to let pass (>= 0)
   Save,           ///< args: the .scene path
@@ -44,7 +44,7 @@ struct ScriptCommand {
 };
 
 /// The keys a script may press.
-inline constexpr std::string_view kScriptKeys[] = {"R", "S", "N", "SPACE", "UP", "DOWN", "LEFT", "RIGHT"};
+inline constexpr std::string_view kScriptKeys[] = {"R", "S", "N", "M", "SPACE", "UP", "DOWN", "LEFT", "RIGHT"};
 
 /// The number a Frames or Wait command carries.
 [[nodiscard]] std::int64_t scriptCount(const ScriptCommand& command);

@@ -511,6 +511,10 @@ std::size_t LevelSet::activeVoxelCount() const {
 // A field always has voxels inside (its threshold stays below its peak).
 bool LevelSet::empty() const { return !impl_->field && (!impl_->grid || impl_->grid->tree().empty()); }
 
+double minimumVoxelSize(double particleSize, const SurfaceSettings& settings) {
+  return settings.radiusScale * particleSize / kMaxRadiusVoxels;
+}
+
 SurfaceMesh meshParticles(std::span<const float> xyz, double particleSize,
                           const SurfaceSettings& settings) {
   return LevelSet::fromParticles(xyz, particleSize, settings).mesh();

@@ -94,6 +94,10 @@ class LevelSet {
   std::shared_ptr<const Impl> impl_;
 };
 
+/// The smallest voxel fromParticles accepts for this particle size: blob radius / 64 (one
+/// blob alone would otherwise span more than a million voxels).
+[[nodiscard]] double minimumVoxelSize(double particleSize, const SurfaceSettings& settings = {});
+
 /// Shortcut: LevelSet::fromParticles(...).mesh().
 SurfaceMesh meshParticles(std::span<const float> positionsXYZ, double particleSize,
                           const SurfaceSettings& settings = {});

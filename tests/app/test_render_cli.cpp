@@ -288,6 +288,22 @@ TEST(RenderCli, AnObjectIsDrawnAsItsMeshAtItsPose) {
   EXPECT_GE(shareShowing(without, (*jelly)[0], (*jelly)[1], 2, frame.fluids[0].colour), 0.5);
 }
 
+TEST(RenderCli, SurfaceDrawsEachFluidAsItsMeshWhereItsParticlesAre) {
+  // --surface draws each fluid as its blobby surface: its colour where the particles
+  // project and nowhere empty (as for particles), in a picture that is not the particles'.
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = render(scene, tmp / "s", "--frames 0 --surface", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(render(scene, tmp / "p", "--frames 0", tmp.path()).code, 0);
+  const scene::SceneDesc desc = scene::readSceneFile(scene.string());
+  const render::Image surface = readPng(tmp / "s" / pictureNames("two-fluids", 0, 0)[0]);
+  const render::Image particles = readPng(tmp / "p" / pictureNames("two-fluids", 0, 0)[0]);
+  expectFluidsWhereTheyProject(surface, cameraOf(desc), initialFrame(desc));
+  EXPECT_GT(differingPixels(surface, particles), static_cast<std::size_t>(kWidth * kHeight / 100))
+      << "the surface picture is the particle picture";
+}
+
 struct Refusal {
   std::string name;    ///< test name
   std::string args;    ///< after the input, before --out
@@ -317,7 +333,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Refusal{"RangeNegative", "--frames -3:2", "--frames"},
                       Refusal{"RangePastTheEnd", "--frames 100:120", "--frames"},
                       Refusal{"MovieOddWidth", "--width 321 --height 200 --movie m.mp4", "--movie"},
-                      Refusal{"MovieOddHeight", "--width 320 --height 201 --movie m.mp4", "--movie"}),
+                      Refusal{"MovieOddHeight", "--width 320 --height 201 --movie m.mp4", "--movie"},
+                      Refusal{"VoxelWithoutSurface", "--voxel-size 0.1", "--voxel-size"},
+                      Refusal{"VoxelTooSmall", "--surface --voxel-size 1e-6", "--voxel-size"}),
     [](const auto& p) { return p.param.name; });
 
 TEST(RenderCli, AFolderWithoutFramesIsRefused) {

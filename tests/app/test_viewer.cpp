@@ -175,6 +175,21 @@ TEST(Viewer, AColourChangeShowsInTheNextScreenshot) {
   EXPECT_GT(shareShowing(a, before) * a.width * a.height, 2000.0);
 }
 
+TEST(Viewer, MShowsSurfacesInsteadOfParticles) {
+  // M toggles surfaces: the fluid still shows in its colour where it is, and the window
+  // differs from the particles' (no frame is simulated in between: `wait` only draws).
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  writeText(tmp / "m.txt", "screenshot particles.png\nkey M\nwait 1\nscreenshot surface.png\nquit\n");
+  const RunResult r = view(scene, tmp / "m.txt", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  const scene::SceneDesc desc = scene::readSceneFile(scene.string());
+  expectScreenshotShows(tmp / "surface.png", cameraOf(desc), initialFrame(desc));
+  EXPECT_GT(differingPixels(readPng(tmp / "surface.png"), readPng(tmp / "particles.png")),
+            static_cast<std::size_t>(kWidth * kHeight / 200));
+}
+
 TEST(Viewer, PlaysBackARecordedFolder) {
   SKIP_WITHOUT_XVFB();
   TempDir tmp;

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "render/camera.h"
 #include "render/offscreen.h"
@@ -26,11 +28,12 @@ class Headless : public ::testing::Test {
     renderer_.reset();
     context_.reset();
   }
-  Image render(const RenderScene& scene, const FrameSnapshot& frame, const Camera& camera, int w, int h) {
+  Image render(const RenderScene& scene, const FrameSnapshot& frame, const Camera& camera, int w, int h,
+               std::span<const RenderSurface> surfaces = {}) {
     renderer_->setScene(scene);
     Framebuffer fb(w, h);
     fb.bind();
-    renderer_->draw(frame, camera, w, h);
+    renderer_->draw(frame, camera, w, h, {}, surfaces);
     Image im = fb.read();
     // SOFTSUB_TEST_PICTURES=DIR keeps each picture for a person to look at.
     if (const char* dir = std::getenv("SOFTSUB_TEST_PICTURES")) {
@@ -209,6 +212,49 @@ TEST_F(Headless, AReflectiveFloorMirrorsTheFluid) {
   EXPECT_EQ(leaked, 0u);
   // The blob itself looks the same in both.
   EXPECT_TRUE(reddish(pixelAt(mirror, cam, {0, 2.5, 0})));
+}
+
+}  // namespace
+}  // namespace softsub::render
+
+namespace softsub::render {
+namespace {
+
+/// A closed cube of half-edge h around c, with outward normals at its corners.
+RenderSurface cubeSurface(std::size_t fluid, Vec3 c, float h) {
+  RenderSurface s;
+  s.fluid = fluid;
+  for (int k = 0; k < 8; ++k) {
+    const float sx = (k & 1) ? 1.f : -1.f, sy = (k & 2) ? 1.f : -1.f, sz = (k & 4) ? 1.f : -1.f;
+    s.vertices.push_back({static_cast<float>(c.x()) + sx * h, static_cast<float>(c.y()) + sy * h,
+                          static_cast<float>(c.z()) + sz * h});
+    const float n = 1.0f / std::sqrt(3.0f);
+    s.normals.push_back({sx * n, sy * n, sz * n});
+  }
+  s.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return s;
+}
+
+TEST_F(Headless, ASurfaceReplacesItsFluidsParticles) {
+  FrameSnapshot frame;
+  frame.fluids.push_back(blob("red", {0.9f, 0.1f, 0.1f}, {-5, 3, 0}, 4, 1));
+  frame.fluids.push_back(blob("green", {0.1f, 0.85f, 0.15f}, {5, 3, 0}, 4, 1));
+  const Camera cam = frontCamera();
+  std::vector<RenderSurface> surfaces{cubeSurface(0, {0, 10, 0}, 1.5f)};
+  // Malformed ones are skipped, not drawn and not fatal: a fluid that does not exist, a
+  // missing normal, an index out of range.
+  surfaces.push_back(cubeSurface(7, {0, 3, 0}, 1.5f));
+  surfaces.push_back(cubeSurface(1, {0, 3, 0}, 1.5f));
+  surfaces.back().normals.pop_back();
+  surfaces.push_back(cubeSurface(1, {0, 3, 0}, 1.5f));
+  surfaces.back().triangles[0][0] = 99;
+  const Image im = render(boxScene(false), frame, cam, 320, 240, surfaces);
+  EXPECT_TRUE(reddish(pixelAt(im, cam, {0, 10, 0}))) << "the red fluid's surface, in its colour";
+  EXPECT_FALSE(reddish(pixelAt(im, cam, {-5, 3, 0}))) << "the red particles are replaced by the surface";
+  EXPECT_TRUE(greenish(pixelAt(im, cam, {5, 3, 0}))) << "a fluid without a surface keeps its particles";
+  const Rgb middle = pixelAt(im, cam, {0, 3, 0});
+  EXPECT_FALSE(reddish(middle) || greenish(middle)) << "no malformed surface is drawn";
 }
 
 }  // namespace
