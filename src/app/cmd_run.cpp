@@ -101,6 +101,9 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
   run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply,mesh,vdb (any of them), all (sim,pdc,ply) or none; mesh and vdb are fluid surfaces (slow)")
       ->capture_default_str();
+  run->add_option("--voxel-size", o.voxelSize,
+                  "Surface voxel edge in scene units for mesh and vdb (default: half each fluid's particle size)")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
                                                      std::end(scene::kIntegratorNames))));
@@ -146,6 +149,9 @@ int runCommand(const RunOptions& o) {
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
+  if (o.voxelSize > 0.0 && !(formats.mesh || formats.vdb))
+    throw InputError({"command line", 0, "--voxel-size"}, "is for surfaces", "add mesh or vdb to --formats, or leave out --voxel-size");
+  checkSurfaceVoxel(o.voxelSize, sim.snapshot(), "--voxel-size");
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets nothing but errors.
   const bool chatty = stderrIsTerminal() && !o.quiet;
@@ -155,7 +161,9 @@ int runCommand(const RunOptions& o) {
   cache::FrameWriter writer(outDir, loaded.name, formats);
   writer.setObjectMeshes(std::move(meshes));
   // The surfaces after the cache files: a frame's mesh/ and vdb/ files come after its .sim.
-  surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb);
+  surface::SurfaceSettings surfaceSettings;
+  surfaceSettings.voxelSize = o.voxelSize;
+  surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb, surfaceSettings);
   LastFrame done;
   std::vector<FrameObserver*> observers;
   if (formats.sim || formats.pdc || formats.ply) observers.push_back(&writer);

@@ -52,6 +52,24 @@ TEST(SurfaceCli, RunWritesClosedMeshesOfTheFluidsVolumeAndLevelSets) {
   EXPECT_EQ(listFiles(tmp / "o/vdb").size(), 3u);
 }
 
+TEST(SurfaceCli, VoxelSizeReachesTheLevelSetsAndIsCheckedFirst) {
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "honey-drop.scene";  // ParticleSize 1
+  const RunResult r = runSoftsub("run -q --frames 0 --formats vdb --voxel-size 0.25 --out " + quote(tmp / "o") + " " +
+                                     quote(scene),
+                                 tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "o/vdb" / (frameName(0) + ".vdb")).voxelSize(), 0.25, 1e-9);
+  // Without a surface format, and below blob radius / 64 (1.5 / 64): refused, nothing made.
+  for (const std::string bad : {"--formats sim --voxel-size 0.25", "--formats mesh --voxel-size 0.01"}) {
+    const RunResult refused =
+        runSoftsub("run -q --frames 0 " + bad + " --out " + quote(tmp / "bad") + " " + quote(scene), tmp.path());
+    EXPECT_EQ(refused.code, 2) << bad << ": " << refused.err;
+    EXPECT_NE(refused.err.find("--voxel-size"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(tmp / "bad")) << bad;
+  }
+}
+
 TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
   TempDir tmp;
   fs::create_directories(tmp / "a");
