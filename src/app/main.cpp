@@ -3,11 +3,13 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "cmd_fill.h"
 #include "cmd_info.h"
@@ -47,6 +49,14 @@ int runApp(int argc, char** argv) {
   CLI::App* render = app::addRenderCommand(root, renderOptions);
   CLI::App* view = app::addViewCommand(root, viewOptions);
   CLI::App* mesh = app::addMeshCommand(root, meshOptions);
+  // --threads belongs to the root and is accepted after any command too (fallthrough):
+  // every command's parallel stages share one limit.
+  int threads = 0;
+  root.add_option("--threads", threads,
+                  "Threads for the simulation, surfaces and pictures, 1 to 1024 (default 0: all cores); "
+                  "results are bitwise the same for any count")
+      ->check(CLI::Range(0, 1024));
+  for (CLI::App* sub : {run, info, fill, schema, render, view, mesh}) sub->fallthrough();
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
@@ -70,6 +80,8 @@ int runApp(int argc, char** argv) {
     return code(ExitCode::BadInput);
   }
 
+  std::optional<tbb::global_control> threadLimit;
+  if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   if (run->parsed()) return app::runCommand(runOptions);
   if (info->parsed()) return app::infoCommand(infoOptions);
   if (fill->parsed()) return app::fillCommand(fillOptions);

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 namespace softsub::fluid {
 
 namespace {
@@ -60,57 +64,115 @@ inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uin
 
 }  // namespace
 
+// Per-thread build buffers: one cell's candidates (positions, slots, squared distances,
+// kept slots, owners). They grow to the densest neighbourhood seen, then stay.
+struct PairList::Scratch {
+  struct Buffers {
+    std::vector<float> x, y, z, r2;
+    std::vector<std::uint32_t> slot, kept, owner;
+  };
+  tbb::enumerable_thread_specific<Buffers> perThread;
+};
+
+PairList::PairList() : scratch_(std::make_unique<Scratch>()) {}
+PairList::~PairList() = default;
+PairList::PairList(PairList&&) noexcept = default;
+PairList& PairList::operator=(PairList&&) noexcept = default;
+
+std::span<const std::uint32_t> PairList::partners(std::size_t i) const {
+  const auto end = layers_.begin() + static_cast<std::ptrdiff_t>(layerCount_);
+  const auto it = std::upper_bound(layers_.begin(), end, i, [](std::size_t v, const Layer& l) { return v < l.slots.end; });
+  if (it == end || i < it->slots.begin) return {};
+  const std::size_t k = i - it->slots.begin;
+  return {it->partners.data() + it->start[k], it->partners.data() + it->start[k + 1]};
+}
+
+std::size_t PairList::pairCount() const {
+  std::size_t n = 0;
+  for (std::size_t l = 0; l < layerCount_; ++l) n += layers_[l].partners.size();
+  return n;
+}
+
+std::size_t PairList::memoryBytes() const {
+  std::size_t b = rowCut2_.capacity() * 4 + layers_.capacity() * sizeof(Layer);
+  for (const Layer& l : layers_) b += (l.start.capacity() + l.partners.capacity()) * 4;
+  for (const Scratch::Buffers& s : scratch_->perThread)
+    b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.slot.capacity() +
+          s.kept.capacity() + s.owner.capacity()) * 4;
+  return b;
+}
+
 void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                      const ParticleStore& s, float skin, const ListOptions& options) {
-  const std::size_t n = s.size();
-  offsets_.resize(n + 1);
-  partners_.clear();
   rowCut2_.resize(table.materials());
   for (std::size_t a = 0; a < rowCut2_.size(); ++a) {
     const float radius = options.rowRadius.empty() ? std::sqrt(table.rowCutoff2(a)) : options.rowRadius[a];
     const float rc = radius + skin;
     rowCut2_[a] = rc * rc;
   }
-  const std::size_t cells = grid.cellCount();
-  for (std::size_t c = 0; c < cells; ++c) {
-    const neighbors::SlotRange own = grid.cell(c);
-    const auto forward = grid.forwardRanges(c);
-    std::uint32_t len = own.end - own.begin;
-    for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
-    if (bx_.size() < len) {  // grows to the densest neighbourhood seen, then stays
-      for (auto* v : {&bx_, &by_, &bz_, &r2_}) v->resize(len);
-      slot_.resize(len);
-      kept_.resize(len);
-      owner_.resize(len);
+  const auto gridLayers = grid.layers();
+  layerCount_ = gridLayers.size();
+  if (layers_.size() < layerCount_) layers_.resize(layerCount_);
+  phases_ = grid.layersByPhase();
+  const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
+  // Cells, and so layers, come in slot order: a layer is a run of cells.
+  std::vector<std::uint32_t> firstCell(layerCount_ + 1);
+  {
+    std::size_t c = 0;
+    for (std::size_t l = 0; l < layerCount_; ++l) {
+      while (grid.cell(c).begin < gridLayers[l].begin) ++c;
+      firstCell[l] = static_cast<std::uint32_t>(c);
     }
-    std::uint32_t k = 0;
-    auto append = [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t j = b; j < e; ++j, ++k) {
-        bx_[k] = s.px[j]; by_[k] = s.py[j]; bz_[k] = s.pz[j]; slot_[k] = j;
-      }
-    };
-    const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
-    append(own.begin, own.end);
-    for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
-    if (exclusive)
-      for (std::uint32_t q = 0; q < len; ++q) owner_[q] = s.owner[slot_[q]];
-    const Buffers b{bx_.data(), by_.data(), bz_.data(), r2_.data(), slot_.data(), kept_.data(), owner_.data()};
-    // Cells come in slot order, so offsets fill in order too.
-    for (std::uint32_t i = own.begin; i < own.end; ++i) {
-      offsets_[i] = static_cast<std::uint32_t>(partners_.size());
-      const std::uint32_t from = i - own.begin + 1;
-      const float cut2 = rowCut2_[s.material[i]];
-      const std::uint32_t kept =
-          exclusive && s.owner[i] >= options.exclusiveOwnersFrom
-              ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i])
-              : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2);
-      partners_.insert(partners_.end(), kept_.begin(), kept_.begin() + kept);
-    }
+    firstCell[layerCount_] = static_cast<std::uint32_t>(grid.cellCount());
   }
-  offsets_[n] = static_cast<std::uint32_t>(partners_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
+    Scratch::Buffers& buf = scratch_->perThread.local();
+    for (std::size_t l = range.begin(); l != range.end(); ++l) {
+      Layer& layer = layers_[l];
+      layer.slots = gridLayers[l];
+      layer.start.resize(layer.slots.end - layer.slots.begin + 1);
+      layer.partners.clear();
+      for (std::size_t c = firstCell[l]; c < firstCell[l + 1]; ++c) {
+        const neighbors::SlotRange own = grid.cell(c);
+        const auto forward = grid.forwardRanges(c);
+        std::uint32_t len = own.end - own.begin;
+        for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
+        if (buf.x.size() < len) {
+          for (auto* v : {&buf.x, &buf.y, &buf.z, &buf.r2}) v->resize(len);
+          for (auto* v : {&buf.slot, &buf.kept, &buf.owner}) v->resize(len);
+        }
+        std::uint32_t k = 0;
+        auto append = [&](std::uint32_t b, std::uint32_t e) {
+          for (std::uint32_t j = b; j < e; ++j, ++k) {
+            buf.x[k] = s.px[j]; buf.y[k] = s.py[j]; buf.z[k] = s.pz[j]; buf.slot[k] = j;
+          }
+        };
+        append(own.begin, own.end);
+        for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
+        if (exclusive)
+          for (std::uint32_t q = 0; q < len; ++q) buf.owner[q] = s.owner[buf.slot[q]];
+        const Buffers b{buf.x.data(), buf.y.data(), buf.z.data(), buf.r2.data(),
+                        buf.slot.data(), buf.kept.data(), buf.owner.data()};
+        for (std::uint32_t i = own.begin; i < own.end; ++i) {
+          layer.start[i - layer.slots.begin] = static_cast<std::uint32_t>(layer.partners.size());
+          const std::uint32_t from = i - own.begin + 1;
+          const float cut2 = rowCut2_[s.material[i]];
+          const std::uint32_t kept =
+              exclusive && s.owner[i] >= options.exclusiveOwnersFrom
+                  ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i])
+                  : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2);
+          layer.partners.insert(layer.partners.end(), buf.kept.begin(), buf.kept.begin() + kept);
+        }
+      }
+      layer.start.back() = static_cast<std::uint32_t>(layer.partners.size());
+    }
+  });
 }
 
-void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
+namespace {
+
+// The pairs of the slots of one layer (see accumulatePairForces).
+void layerPairForces(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
   const std::size_t m = table.materials();
   const forces::PairEntry* entries = table.entries().data();
   const float* __restrict samples = table.samples().data();
@@ -124,14 +186,16 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
   float* __restrict fy = s.fy.data();
   float* __restrict fz = s.fz.data();
   const std::uint16_t* __restrict mat = s.material.data();
-  const std::size_t n = s.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::uint32_t* __restrict list = layer.partners.data();
+  for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i) {
     const forces::PairEntry* row = entries + mat[i] * m;
     const float xi = px[i], yi = py[i], zi = pz[i];
     const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
     float ax = 0, ay = 0, az = 0;
+    const std::uint32_t first = layer.start[i - layer.slots.begin], last = layer.start[i - layer.slots.begin + 1];
     // The whole interaction model, one formula for every pair kind.
-    for (const std::uint32_t j : list.partners(i)) {
+    for (std::uint32_t q = first; q < last; ++q) {
+      const std::uint32_t j = list[q];
       const float dx = px[j] - xi, dy = py[j] - yi, dz = pz[j] - zi;
       const float r2 = dx * dx + dy * dy + dz * dz;
       const forces::PairEntry& e = row[mat[j]];
@@ -154,6 +218,19 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
       fx[j] -= gx; fy[j] -= gy; fz[j] -= gz;
     }
     fx[i] += ax; fy[i] += ay; fz[i] += az;
+  }
+}
+
+}  // namespace
+
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
+  const auto layers = list.layers();
+  // Phase by phase: a layer writes to its own slots and the next layer's, which no other
+  // layer of its phase touches; each slot's force is summed in slot and phase order.
+  for (const std::vector<std::uint32_t>& phase : list.phases()) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
+      for (std::size_t p = range.begin(); p != range.end(); ++p) layerPairForces(layers[phase[p]], table, s);
+    });
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// The pair kernel: one formula for every pair of particles, whatever their materials.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,36 +27,52 @@ struct ListOptions {
 
 class PairList {
  public:
+  PairList();
+  ~PairList();
+  PairList(PairList&&) noexcept;
+  PairList& operator=(PairList&&) noexcept;
+
   /// Lists every pair closer than (row radius + skin) using `grid` (rebuilt on `store`).
+  /// Built in parallel, one task per layer of the grid (CellGrid::layers), each with its
+  /// own partner array: the list is the same for any number of threads.
   void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
              const ParticleStore& store, float skin, const ListOptions& options = {});
-  /// Partners of slot i.
-  [[nodiscard]] std::span<const std::uint32_t> partners(std::size_t i) const {
-    return {partners_.data() + offsets_[i], partners_.data() + offsets_[i + 1]};
-  }
+  /// Partners of slot i (finds i's layer: for tests and bookkeeping, not hot loops).
+  [[nodiscard]] std::span<const std::uint32_t> partners(std::size_t i) const;
   /// Number of listed pairs.
-  [[nodiscard]] std::size_t pairCount() const { return partners_.size(); }
+  [[nodiscard]] std::size_t pairCount() const;
   /// Bytes reserved.
-  [[nodiscard]] std::size_t memoryBytes() const {
-    return (offsets_.capacity() + partners_.capacity() + slot_.capacity() + kept_.capacity() +
-            owner_.capacity()) * 4 +
-           (bx_.capacity() + by_.capacity() + bz_.capacity() + r2_.capacity() + rowCut2_.capacity()) * 4;
-  }
+  [[nodiscard]] std::size_t memoryBytes() const;
+
+  /// One layer of the grid: its slots, and their partners one after another
+  /// (slot slots.begin + k has partners[start[k] .. start[k + 1])).
+  struct Layer {
+    neighbors::SlotRange slots;
+    std::vector<std::uint32_t> start;
+    std::vector<std::uint32_t> partners;
+  };
+  [[nodiscard]] std::span<const Layer> layers() const { return {layers_.data(), layerCount_}; }
+  /// The layers grouped in phases (CellGrid::layersByPhase, copied at build): a pair of
+  /// a layer's slot i lists j in the same layer or the next, so the layers of one phase
+  /// may add forces to their i and j in parallel without sharing a slot.
+  [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& phases() const { return phases_; }
 
  private:
-  std::vector<std::uint32_t> offsets_;
-  std::vector<std::uint32_t> partners_;
-  // Build scratch, kept between builds: one cell's candidates (positions, slots,
-  // squared distances, kept slots) and each material row's squared list radius.
-  std::vector<float> bx_, by_, bz_, r2_, rowCut2_;
-  std::vector<std::uint32_t> slot_, kept_, owner_;
+  struct Scratch;
+  std::vector<Layer> layers_;
+  std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
+  std::vector<std::vector<std::uint32_t>> phases_;
+  std::vector<float> rowCut2_;  // each material row's squared list radius
+  std::unique_ptr<Scratch> scratch_;
 };
 
 /// Adds to store.f the forces of every listed pair closer than its cutoff (Newton's
 /// third law: what i gets, j gets with the opposite sign):
 ///   f_i += -F(r) n + damping (v_j - v_i) + k ((v_j - v_i) . n) n,  n = (x_j - x_i) / r
 /// with F the pair's sampled function (positive = repulsion). No branch on function
-/// kind, no virtual call, no allocation once warmed up.
+/// kind, no virtual call, no allocation once warmed up. Runs the list's layers in
+/// parallel phase by phase; every force is summed in the same order whatever the number
+/// of threads, so the result is bitwise the same for any thread count.
 void accumulatePairForces(const PairList& list, const forces::InteractionTable& table,
                           ParticleStore& store);
 

@@ -171,13 +171,29 @@ void CellGrid::buildCells() {
   const std::size_t n = keys_.size();
   cellStart_.clear();
   cellKey_.clear();
+  layers_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (i == 0 || keys_[i] != keys_[i - 1]) {
       cellStart_.push_back(static_cast<std::uint32_t>(i));
       cellKey_.push_back(keys_[i]);
+      if (i == 0 || (keys_[i] >> (2 * kBits)) != (keys_[i - 1] >> (2 * kBits)))
+        layers_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i)});
     }
+    layers_.back().end = static_cast<std::uint32_t>(i + 1);
   }
   cellStart_.push_back(static_cast<std::uint32_t>(n));
+  // Phases of the layers (see layersByPhase). Layer k's pairs reach layer k + 1 only
+  // when their z coordinates are consecutive; the last layer reaches the first only
+  // across the wrap (z = 2^21 - 1 next to z = 0).
+  for (auto& p : phases_) p.clear();
+  phases_.resize(3);
+  const std::size_t count = layers_.size();
+  const bool wraps = count > 2 && (keys_[layers_.front().begin] >> (2 * kBits)) == 0 &&
+                     (keys_[layers_.back().begin] >> (2 * kBits)) == kMask;
+  for (std::size_t k = 0; k < count; ++k) {
+    const bool alone = wraps && count % 2 == 1 && k + 1 == count;
+    phases_[alone ? 2 : k % 2].push_back(static_cast<std::uint32_t>(k));
+  }
 }
 
 void CellGrid::buildHash() {

@@ -45,6 +45,17 @@ class CellGrid {
   [[nodiscard]] std::span<const SlotRange> forwardRanges(std::size_t c) const {
     return {ranges_.data() + rangeStart_[c], ranges_.data() + rangeStart_[c + 1]};
   }
+  /// Slot ranges of the layers: the cells of one z coordinate (the sort key's major
+  /// axis) are contiguous slots. A cell's forward neighbours lie in its own layer or the
+  /// next one, so the pairs of layers k and k + 2 never share a particle: the basis for
+  /// deterministic parallel work (layersByPhase).
+  [[nodiscard]] std::span<const SlotRange> layers() const { return layers_; }
+  /// The layers' indices grouped into phases: within a phase no two layers are
+  /// neighbours, so tasks of one phase that write to their own layer and the next one
+  /// never write to the same slot. Phases: even layers, odd layers, and, when the last
+  /// layer wraps around to the first (an odd count of z coordinates that meet across
+  /// the 21-bit wrap), that last layer alone.
+  [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& layersByPhase() const { return phases_; }
   /// The cell size used by the last rebuild.
   [[nodiscard]] float cellSize() const { return cellSize_; }
   /// Whether the last rebuild had to reorder the store.
@@ -82,6 +93,8 @@ class CellGrid {
   std::vector<SlotRange> ranges_;
   std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two
   std::vector<std::uint32_t> hashCells_;
+  std::vector<SlotRange> layers_;
+  std::vector<std::vector<std::uint32_t>> phases_;
   std::uint64_t hashMask_ = 0;
 };
 

@@ -7,7 +7,26 @@
 #include "core/error.h"
 #include "fluid/pair_forces.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 namespace softsub::solver {
+
+namespace {
+
+// Per-particle stages run over fixed blocks of slots in parallel: each slot is written by
+// one task only and with the same arithmetic whatever the thread count.
+constexpr std::size_t kBlock = 4096;
+
+template <class Fn>
+void forEachSlot(std::size_t n, Fn&& fn) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) fn(i);
+  });
+}
+
+}  // namespace
 
 std::size_t Model::particleCount() const {
   std::size_t n = 0;
@@ -58,20 +77,35 @@ double Simulation::time() const {
 bool Simulation::listIsStale() const {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
-  float first = 0, second = 0;  // the two largest squared displacements
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    if (!(d2 <= second)) {  // NaN lands here too
-      if (!(d2 <= first)) {
+  // The two largest squared displacements (a NaN counts as infinite): maxima are exact,
+  // so the parallel reduction gives the same pair whatever the split.
+  struct Top2 {
+    float first = 0, second = 0;
+    void add(float d2) {
+      if (!(d2 == d2)) d2 = INFINITY;
+      if (d2 > first) {
         second = first;
         first = d2;
-      } else {
+      } else if (d2 > second) {
         second = d2;
       }
     }
-  }
-  return !(std::sqrt(first) + std::sqrt(second) < skin_);  // NaN also rebuilds
+  };
+  const Top2 top = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, s.size(), kBlock), Top2{},
+      [&](const tbb::blocked_range<std::size_t>& r, Top2 t) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
+          t.add(dx * dx + dy * dy + dz * dz);
+        }
+        return t;
+      },
+      [](Top2 a, const Top2& b) {
+        a.add(b.first);
+        a.add(b.second);
+        return a;
+      });
+  return !(std::sqrt(top.first) + std::sqrt(top.second) < skin_);
 }
 
 void Simulation::computeForces() {
@@ -81,15 +115,18 @@ void Simulation::computeForces() {
     grid_.rebuild(s, cellSize_ + skin_);
     list_.build(grid_, model_.table, s, skin_, listOptions_);
     if (!model_.bodies.empty()) listRigidPairs();
-    refX_ = s.px;
-    refY_ = s.py;
-    refZ_ = s.pz;
+    refX_.resize(s.size());
+    refY_.resize(s.size());
+    refZ_.resize(s.size());
+    forEachSlot(s.size(), [&](std::size_t i) {
+      refX_[i] = s.px[i];
+      refY_[i] = s.py[i];
+      refZ_[i] = s.pz[i];
+    });
     listValid_ = true;
     ++listBuilds_;
   }
-  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
-  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
-  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  forEachSlot(s.size(), [&](std::size_t i) { s.fx[i] = s.fy[i] = s.fz[i] = 0.0f; });
   fluid::accumulatePairForces(list_, model_.table, s);
   state_.forcesValid = true;
 }
@@ -120,22 +157,22 @@ void Simulation::kick(float h) {
   const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
               gz = static_cast<float>(model_.gravity.z());
   const MaterialInfo* mats = model_.materials.data();
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  forEachSlot(s.size(), [&](std::size_t i) {
     const float im = mats[s.material[i]].inverseMass;
     s.vx[i] += (s.fx[i] * im + gx) * h;
     s.vy[i] += (s.fy[i] * im + gy) * h;
     s.vz[i] += (s.fz[i] * im + gz) * h;
-  }
+  });
 }
 
 // x += v dt for every particle.
 void Simulation::drift(float dt) {
   ParticleStore& s = state_.particles;
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  forEachSlot(s.size(), [&](std::size_t i) {
     s.px[i] += s.vx[i] * dt;
     s.py[i] += s.vy[i] * dt;
     s.pz[i] += s.vz[i] * dt;
-  }
+  });
 }
 
 // Container walls: a particle's centre stays one radius inside. On contact the
@@ -155,7 +192,7 @@ void Simulation::applyWalls() {
   float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
   float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
   const MaterialInfo* mats = model_.materials.data();
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  forEachSlot(s.size(), [&](std::size_t i) {
     const float r = mats[s.material[i]].radius;
     for (int a = 0; a < 3; ++a) {
       float lo = static_cast<float>(box.lo[a]) + r;
@@ -179,7 +216,7 @@ void Simulation::applyWalls() {
         t2 *= scale;
       }
     }
-  }
+  });
 }
 
 // The integrators, from kicks (velocity) and drifts (position):
