@@ -22,6 +22,7 @@
 #include "scene_source.h"
 #include "session/object_meshes.h"
 #include "scene_view.h"
+#include "solver/energy.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
 #include "surface/surface_writer.h"
@@ -41,6 +42,26 @@ class LastFrame : public FrameObserver {
  public:
   void onFrame(const FrameSnapshot& frame) override { last = frame.frame; }
   std::int64_t last = -1;  ///< -1: none yet
+};
+
+/// --stats: one line per frame on stdout with the state's energies (solver/energy.h).
+class StatsObserver : public FrameObserver {
+ public:
+  explicit StatsObserver(const solver::Simulation& sim) : sim_(sim) {}
+  void onFrame(const FrameSnapshot& frame) override {
+    if (!headerDone_) {
+      fmt::print("# frame time kinetic pair gravity bodies total\n");
+      headerDone_ = true;
+    }
+    const solver::EnergyReport e = solver::measureEnergy(sim_.model(), sim_.state());
+    fmt::print("{} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", frame.frame, frame.time, e.kinetic, e.pair, e.gravity,
+               e.bodies, e.total());
+    std::fflush(stdout);
+  }
+
+ private:
+  const solver::Simulation& sim_;
+  bool headerDone_ = false;
 };
 
 /// The schema's declaration of a <Simulation> tag (the one source of its range).
@@ -104,6 +125,8 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--voxel-size", o.voxelSize,
                   "Surface voxel edge in scene units for mesh and vdb (default: half each fluid's particle size)")
       ->check(CLI::NonNegativeNumber);
+  run->add_flag("--stats", o.stats,
+                "Print each frame's energies on stdout: frame, time, kinetic, pair, gravity, bodies, total");
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
                                                      std::end(scene::kIntegratorNames))));
@@ -169,6 +192,8 @@ int runCommand(const RunOptions& o) {
   if (formats.sim || formats.pdc || formats.ply) observers.push_back(&writer);
   if (formats.mesh || formats.vdb) observers.push_back(&surfaces);
   observers.push_back(&done);
+  std::optional<StatsObserver> stats;
+  if (o.stats) observers.push_back(&stats.emplace(sim));
 
   ProgressLine progress(chatty, lastFrame, particles);
   solver::FrameLoopHooks hooks;

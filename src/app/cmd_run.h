@@ -27,6 +27,7 @@ struct RunOptions {
   std::string drawPerFrame;           ///< -drawPerFrame X; accepted and ignored (viewer)
   bool preview = false;               ///< --preview: a PNG of the last frame in the output folder
   double voxelSize = 0.0;             ///< --voxel-size for mesh/vdb; 0: half the particle size
+  bool stats = false;                 ///< --stats: per-frame energies on stdout
 };
 
 /// Adds the `run` subcommand bound to `options` and returns it.
