@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "cmd_bench.h"
 #include "cmd_fill.h"
 #include "cmd_info.h"
 #include "cmd_mesh.h"
@@ -42,6 +43,7 @@ int runApp(int argc, char** argv) {
   app::RenderOptions renderOptions;
   app::ViewOptions viewOptions;
   app::MeshOptions meshOptions;
+  app::BenchOptions benchOptions;
   CLI::App* run = app::addRunCommand(root, runOptions);
   CLI::App* info = app::addInfoCommand(root, infoOptions);
   CLI::App* fill = app::addFillCommand(root, fillOptions);
@@ -49,6 +51,7 @@ int runApp(int argc, char** argv) {
   CLI::App* render = app::addRenderCommand(root, renderOptions);
   CLI::App* view = app::addViewCommand(root, viewOptions);
   CLI::App* mesh = app::addMeshCommand(root, meshOptions);
+  CLI::App* bench = app::addBenchCommand(root, benchOptions);
   // --threads belongs to the root and is accepted after any command too (fallthrough):
   // every command's parallel stages share one limit.
   int threads = 0;
@@ -56,7 +59,8 @@ int runApp(int argc, char** argv) {
                   "Threads for the simulation, surfaces and pictures, 1 to 1024 (default 0: all cores); "
                   "results are bitwise the same for any count")
       ->check(CLI::Range(0, 1024));
-  for (CLI::App* sub : {run, info, fill, schema, render, view, mesh}) sub->fallthrough();
+  for (CLI::App* sub : {run, info, fill, schema, render, view, mesh, bench}) sub->fallthrough();
+  for (CLI::App* sub : bench->get_subcommands({})) sub->fallthrough();
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
   // added, and this one is for the root's help only.
   root.footer("Run 'softsub COMMAND --help' for a command's options. Seed flags (-f, -record, "
@@ -89,6 +93,7 @@ int runApp(int argc, char** argv) {
   if (render->parsed()) return app::renderCommand(renderOptions);
   if (view->parsed()) return app::viewCommand(viewOptions);
   if (mesh->parsed()) return app::meshCommand(meshOptions);
+  if (bench->parsed()) return app::benchLammpsCommand(benchOptions);
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }
 
