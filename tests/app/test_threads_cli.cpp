@@ -1,0 +1,104 @@
+// --threads, run --stats and bench lammps end to end (issue #6).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app_test_util.h"
+
+namespace softsub::apptest {
+namespace {
+
+TEST(ThreadsCli, RunWritesTheSameBytesOnOneAndTwoThreads) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  // --threads after the command and before it: both are the root's option.
+  const RunResult one = runSoftsub("run -q --frames 4 --formats sim --threads 1 --out " + quote(tmp / "one") + " " +
+                                       quote(scene),
+                                   tmp.path());
+  const RunResult two = runSoftsub("--threads 2 run -q --frames 4 --formats sim --out " + quote(tmp / "two") + " " +
+                                       quote(scene),
+                                   tmp.path());
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(two.code, 0) << two.err;
+  const auto files = listFiles(tmp / "one");
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(listFiles(tmp / "two"), files);
+  for (const std::string& f : files) EXPECT_EQ(readFile(tmp / "one" / f), readFile(tmp / "two" / f)) << f;
+}
+
+TEST(ThreadsCli, AThreadCountOutOfRangeIsRefused) {
+  TempDir tmp;
+  for (const std::string bad : {"--threads 2000", "--threads -1", "--threads x"}) {
+    const RunResult r = runSoftsub(bad + " run --frames 1 --formats none", tmp.path());
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+  }
+}
+
+// The rows of --stats: frame, time, kinetic, pair, gravity, bodies, total.
+std::vector<std::vector<double>> statsRows(const std::string& out) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> row;
+    for (double v; fields >> v;) row.push_back(v);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(ThreadsCli, StatsPrintsEveryFramesEnergiesThatAddUp) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "box-on-jelly.scene", tmp.path());
+  const RunResult r = runSoftsub("run -q --frames 3 --formats none --stats " + quote(scene), tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("# frame time kinetic pair gravity bodies total\n", 0), 0u) << r.out;
+  const auto rows = statsRows(r.out);
+  ASSERT_EQ(rows.size(), 4u) << r.out;
+  for (std::size_t f = 0; f < rows.size(); ++f) {
+    ASSERT_EQ(rows[f].size(), 7u);
+    EXPECT_EQ(rows[f][0], static_cast<double>(f));
+    const double parts = rows[f][2] + rows[f][3] + rows[f][4] + rows[f][5];
+    EXPECT_NEAR(rows[f][6], parts, 1e-6 * std::max(1.0, std::abs(parts)));
+    EXPECT_GE(rows[f][2], 0.0);
+    EXPECT_GE(rows[f][5], 0.0);
+  }
+  EXPECT_GT(rows[3][2], 0.0) << "the jelly moves under gravity";
+  // The numbers do not depend on the thread count either.
+  const RunResult one = runSoftsub("--threads 1 run -q --frames 3 --formats none --stats " + quote(scene), tmp.path());
+  EXPECT_EQ(one.out, r.out);
+}
+
+TEST(BenchCli, LammpsComparisonRunsOurSideAndLammpsWhenInstalled) {
+  TempDir tmp;
+  // Without LAMMPS: a note, and softsub's side of the table.
+  const RunResult ours = runSoftsub(
+      "bench lammps --particles 500 --cutoff 2.5 --steps 5 --lammps /nonexistent/lmp", tmp.path());
+  ASSERT_EQ(ours.code, 0) << ours.err;
+  EXPECT_NE(ours.err.find("LAMMPS not found"), std::string::npos) << ours.err;
+  const auto rows = statsRows(ours.out);  // rows with "-" stop at the first dash
+  ASSERT_GE(rows.size(), 1u) << ours.out;
+  EXPECT_EQ(rows[0].at(0), 500.0);  // 4 x 5^3
+  EXPECT_EQ(rows[0].at(1), 2.5);
+  EXPECT_GT(rows[0].at(3), 0.0) << "atom-steps per second";
+  if (findProgram("lmp").empty()) GTEST_SKIP() << "LAMMPS (lmp) is not installed: its side is not checked";
+  // With LAMMPS: both codes from the same start agree on the energy after the run.
+  const RunResult both = runSoftsub("bench lammps --particles 500 --cutoff 2.5 --steps 20 --keep " +
+                                        quote(tmp / "kept"),
+                                    tmp.path());
+  ASSERT_EQ(both.code, 0) << both.err;
+  const auto full = statsRows(both.out);
+  ASSERT_GE(full.size(), 1u) << both.out;
+  ASSERT_EQ(full[0].size(), 10u) << both.out;
+  EXPECT_LT(full[0][8], 1e-4) << "relative energy difference\n" << both.out;
+  EXPECT_TRUE(fs::exists(tmp / "kept" / "lj-500.data"));
+  EXPECT_TRUE(fs::exists(tmp / "kept" / "lj-500-rc2.5.scene"));
+}
+
+}  // namespace
+}  // namespace softsub::apptest
