@@ -40,8 +40,10 @@ InteractionTable::InteractionTable(std::size_t materials, int intervals)
       intervals_(intervals),
       entries_(materials * materials),
       described_(materials * materials),
+      samples_(2, 0.0f),
       rowCutoff2_(materials, 0.0f) {
-  // Every pair starts as "nothing": a zero function with zero cutoff.
+  // Every pair starts as "nothing": zero cutoff, pointing at one zero piece at offset 0,
+  // so that the branch-free kernel may read an entry's table whatever the distance.
 }
 
 std::uint32_t InteractionTable::addSamples(const PairFunction& f, double* cutoffOut) {

@@ -73,7 +73,8 @@ class InteractionTable {
   }
   /// All entries, row-major (a * materials() + b).
   [[nodiscard]] std::span<const PairEntry> entries() const { return entries_; }
-  /// All sampled pieces; entries point into this.
+  /// All sampled pieces; entries point into this. Starts with one zero piece (offset 0)
+  /// that pairs doing nothing point at: every entry's table is readable.
   [[nodiscard]] std::span<const float> samples() const { return samples_; }
   /// Squared longest cutoff of material a with any material (kernel pre-filter).
   [[nodiscard]] float rowCutoff2(std::size_t a) const { return rowCutoff2_[a]; }

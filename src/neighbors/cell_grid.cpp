@@ -4,6 +4,10 @@
 #include <array>
 #include <cmath>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 namespace softsub::neighbors {
 
 namespace {
@@ -49,12 +53,21 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
   const std::size_t n = store.size();
   const float invH = 1.0f / cellSize;
   keys_.resize(n);
-  bool sorted = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    keys_[i] = pack(wrappedCoord(store.px[i], invH), wrappedCoord(store.py[i], invH),
-                    wrappedCoord(store.pz[i], invH));
-    if (i > 0 && keys_[i] < keys_[i - 1]) sorted = false;
-  }
+  // Keys in parallel over fixed blocks (each key is written once), then whether they are
+  // already in order: a logical "and", the same for any split.
+  using Range = tbb::blocked_range<std::size_t>;
+  tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      keys_[i] = pack(wrappedCoord(store.px[i], invH), wrappedCoord(store.py[i], invH),
+                      wrappedCoord(store.pz[i], invH));
+  });
+  const bool sorted = tbb::parallel_reduce(
+      Range(1, std::max<std::size_t>(n, 1), 8192), true,
+      [&](const Range& r, bool ok) {
+        for (std::size_t i = r.begin(); i != r.end() && ok; ++i) ok = keys_[i] >= keys_[i - 1];
+        return ok;
+      },
+      [](bool a, bool b) { return a && b; });
   reordered_ = !sorted;
   if (!sorted) {
     sortKeys();

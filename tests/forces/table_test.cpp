@@ -97,7 +97,8 @@ TEST(InteractionTable, SymmetricEntriesSharedSamplesAndMaxCutoff) {
   t.set(0, 0, {LennardJones{30, 1, -20, 400, 1.5}, 1, 0});
   EXPECT_EQ(t.entry(0, 1).offset, t.entry(1, 0).offset);
   EXPECT_EQ(t.entry(0, 1).offset, t.entry(0, 2).offset) << "identical functions share samples";
-  EXPECT_EQ(t.samples().size(), 3u * 2 * kDefaultIntervals);
+  // Three distinct functions, after the zero piece every table starts with.
+  EXPECT_EQ(t.samples().size(), 2u + 3u * 2 * kDefaultIntervals);
   EXPECT_FLOAT_EQ(t.entry(2, 1).damping, 0.5f);
   EXPECT_FLOAT_EQ(t.entry(2, 1).relativeVelocity, 2.0f);
   EXPECT_FLOAT_EQ(t.entry(1, 2).cutoff2, 2.25f);
@@ -108,6 +109,27 @@ TEST(InteractionTable, SymmetricEntriesSharedSamplesAndMaxCutoff) {
                 1e-4 * (1 + std::abs(sample(t.interaction(0, 0).function).at(r))));
     EXPECT_NEAR(t.sampledAt(1, 2, r), evaluate(Linear{8, 1.5, 0, 8}, r), 1e-4);
   }
+}
+
+}  // namespace
+}  // namespace softsub::forces
+
+namespace softsub::forces {
+namespace {
+
+TEST(InteractionTable, PairsThatDoNothingPointAtAZeroPiece) {
+  // The pair kernel reads every listed pair's table whatever the distance (branch-free):
+  // an entry never set must point at readable zeros, even in a table with no function.
+  const InteractionTable t(3);
+  ASSERT_GE(t.samples().size(), 2u);
+  for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t b = 0; b < 3; ++b) {
+      const PairEntry& e = t.entry(a, b);
+      EXPECT_EQ(e.cutoff2, 0.0f);
+      ASSERT_LT(e.offset + 2 * std::size_t{e.lastPiece} + 1, t.samples().size());
+      EXPECT_EQ(t.samples()[e.offset], 0.0f);
+      EXPECT_EQ(t.samples()[e.offset + 1], 0.0f);
+    }
 }
 
 }  // namespace
