@@ -238,7 +238,10 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
         const float r2 = dxs[c] * dxs[c] + dys[c] * dys[c] + dzs[c] * dzs[c];
         const float in = r2 < cut2[c] ? 1.0f : 0.0f;
         const float r = std::sqrt(r2);
-        inv[c] = r > 0 ? in / r : 0.0f;
+        // Divides unconditionally (by 1 for coincident particles) so that the loop has no
+        // branch: a division under a condition is not vectorised (it could trap).
+        const bool apart = r > 0;
+        inv[c] = (apart ? in : 0.0f) / (apart ? r : 1.0f);
         if constexpr (kVelocity) damp[c] *= in;
         const float tMax = lastK[c] + 1.0f, tr = r * invDr[c];
         const float t = tr < tMax ? tr : tMax;
