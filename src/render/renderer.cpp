@@ -514,13 +514,13 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
     }
   };
 
-  auto drawObjects = [&](bool mirrored) {
-    if (!options.objects) return;
+  // The mesh program for objects and surfaces, with clipping on; returns the floor mirror
+  // (identity for the upright pass). The mirrored copy keeps only what lies below the floor.
+  auto useMeshProgram = [&](bool mirrored) {
     glUseProgram(g.mesh);
     setMat4(g.mesh, "view", view);
     setMat4(g.mesh, "proj", proj);
     setVec3(g.mesh, "lightView", lightView);
-    // The mirrored copy keeps only what lies below the floor.
     setVec4(g.mesh, "clipPlane", mirrored ? Eigen::Vector4f(0, -1, 0, floorY) : Eigen::Vector4f(0, 0, 0, 1));
     Eigen::Matrix4f mirror = Eigen::Matrix4f::Identity();
     if (mirrored) {
@@ -528,6 +528,12 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
       mirror(1, 3) = 2 * floorY;
     }
     glEnable(GL_CLIP_DISTANCE0);
+    return mirror;
+  };
+
+  auto drawObjects = [&](bool mirrored) {
+    if (!options.objects) return;
+    const Eigen::Matrix4f mirror = useMeshProgram(mirrored);
     for (const ObjectSnapshot& o : frame.objects) {
       const auto it = g.meshes.find(o.name);
       if (it == g.meshes.end() || it->second.vertices == 0) continue;
@@ -541,18 +547,7 @@ void Renderer::draw(const FrameSnapshot& frame, const Camera& camera, int width,
 
   auto drawSurfaces = [&](bool mirrored) {
     if (surfaceRanges.empty()) return;
-    glUseProgram(g.mesh);
-    setMat4(g.mesh, "view", view);
-    setMat4(g.mesh, "proj", proj);
-    setVec3(g.mesh, "lightView", lightView);
-    setVec4(g.mesh, "clipPlane", mirrored ? Eigen::Vector4f(0, -1, 0, floorY) : Eigen::Vector4f(0, 0, 0, 1));
-    Eigen::Matrix4f model = Eigen::Matrix4f::Identity();
-    if (mirrored) {
-      model(1, 1) = -1;
-      model(1, 3) = 2 * floorY;
-    }
-    setMat4(g.mesh, "model", model);
-    glEnable(GL_CLIP_DISTANCE0);
+    setMat4(g.mesh, "model", useMeshProgram(mirrored));  // surfaces are in world coordinates
     glBindVertexArray(g.surfaceVao);
     glBindBuffer(GL_ARRAY_BUFFER, g.surfaceVbo);  // attribute pointers read this binding
     for (const SurfaceRange& r : surfaceRanges) {
