@@ -94,7 +94,7 @@ std::size_t PairList::pairCount() const {
 }
 
 std::size_t PairList::memoryBytes() const {
-  std::size_t b = rowCut2_.capacity() * 4 + layers_.capacity() * sizeof(Layer);
+  std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
   for (const Layer& l : layers_) b += (l.start.capacity() + l.partners.capacity()) * 4;
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.slot.capacity() +
@@ -116,14 +116,14 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   phases_ = grid.layersByPhase();
   const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
   // Cells, and so layers, come in slot order: a layer is a run of cells.
-  std::vector<std::uint32_t> firstCell(layerCount_ + 1);
+  firstCell_.resize(layerCount_ + 1);  // keeps its memory: no allocation once warmed up
   {
     std::size_t c = 0;
     for (std::size_t l = 0; l < layerCount_; ++l) {
       while (grid.cell(c).begin < gridLayers[l].begin) ++c;
-      firstCell[l] = static_cast<std::uint32_t>(c);
+      firstCell_[l] = static_cast<std::uint32_t>(c);
     }
-    firstCell[layerCount_] = static_cast<std::uint32_t>(grid.cellCount());
+    firstCell_[layerCount_] = static_cast<std::uint32_t>(grid.cellCount());
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
     Scratch::Buffers& buf = scratch_->perThread.local();
@@ -132,7 +132,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       layer.slots = gridLayers[l];
       layer.start.resize(layer.slots.end - layer.slots.begin + 1);
       layer.partners.clear();
-      for (std::size_t c = firstCell[l]; c < firstCell[l + 1]; ++c) {
+      for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c) {
         const neighbors::SlotRange own = grid.cell(c);
         const auto forward = grid.forwardRanges(c);
         std::uint32_t len = own.end - own.begin;

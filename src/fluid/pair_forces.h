@@ -63,6 +63,7 @@ class PairList {
   std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
   std::vector<std::vector<std::uint32_t>> phases_;
   std::vector<float> rowCut2_;  // each material row's squared list radius
+  std::vector<std::uint32_t> firstCell_;  // each layer's first cell (build scratch)
   std::unique_ptr<Scratch> scratch_;
 };
 
