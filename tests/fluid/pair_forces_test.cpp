@@ -150,3 +150,45 @@ TEST(PairList, ExcludesPairsOfOneRigidOwnerAndHonoursRowRadii) {
 
 }  // namespace
 }  // namespace softsub::fluid
+
+namespace softsub::fluid {
+namespace {
+
+// The kernel's other instance (no velocity term anywhere: velocities never loaded) and
+// listed pairs that are out of range now (a skin): each must add exactly nothing.
+TEST(PairForces, ConservativeModelWithASkinMatchesTheReference) {
+  forces::InteractionTable table(2);
+  table.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  table.set(1, 1, {forces::Curve{{0.1, 6, 0.7, 1, 1.3, -0.5}}, 0, 0});
+  table.set(0, 1, {forces::Linear{5, 1, 0, 5}, 0, 0});
+  ParticleStore s = scenarios::randomCloud(1500, -4, 4, 2.0f, 2, 5);
+  const float skin = 0.6f;
+  neighbors::CellGrid grid;
+  grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+  PairList list;
+  list.build(grid, table, s, skin);
+  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
+  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
+  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  accumulatePairForces(list, table, s);
+  std::vector<double> rx, ry, rz;
+  referencePairForces(table, s, rx, ry, rz);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    worst = std::max(worst, std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]));
+    scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
+  }
+  ASSERT_GT(scale, 1.0);
+  EXPECT_LT(worst, 2e-3 * scale);
+  // The skin listed pairs beyond every cutoff (the ones the kernel must zero).
+  std::size_t beyond = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (const std::uint32_t j : list.partners(i)) {
+      const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+      beyond += !(dx * dx + dy * dy + dz * dz < table.entry(s.material[i], s.material[j]).cutoff2);
+    }
+  EXPECT_GT(beyond, 100u);
+}
+
+}  // namespace
+}  // namespace softsub::fluid
