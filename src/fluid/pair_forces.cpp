@@ -173,7 +173,9 @@ namespace {
 
 // The pairs of the slots of one layer (see accumulatePairForces). kVelocity: some pair has
 // a damping or relative-velocity term; without (a conservative model such as the LJ
-// benchmark) the velocities are never loaded. Both instances are this one code path.
+// benchmark) the velocities are never loaded. kOneMaterial: a table of one material, whose
+// one entry's constants replace the per-pair gather of entries. All four instances are
+// this one code path.
 //
 // A slot's partners go through in chunks, in passes that keep the indirect loads apart
 // from the arithmetic, so that the arithmetic (square root, division, clamps) runs 4 wide
@@ -182,9 +184,11 @@ namespace {
 // partner order (the same order and the same operations per pair as a plain loop, so the
 // sums do not depend on the chunking). Branch-free: a pair listed within the skin but out
 // of range now contributes exactly 0.
-template <bool kVelocity>
+template <bool kVelocity, bool kOneMaterial>
 void layerPairForces(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
   constexpr std::uint32_t kChunk = 64;
+  // One material (one pair entry): its constants, instead of a gather per pair.
+  const forces::PairEntry one = table.entries().front();
   const std::size_t m = table.materials();
   const forces::PairEntry* entries = table.entries().data();
   const float* __restrict samples = table.samples().data();
@@ -218,17 +222,21 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
         dxs[c] = px[j] - xi;
         dys[c] = py[j] - yi;
         dzs[c] = pz[j] - zi;
-        const forces::PairEntry& e = row[mat[j]];
-        cut2[c] = e.cutoff2;
-        invDr[c] = e.invDr;
-        lastK[c] = static_cast<float>(e.lastPiece);
-        offset[c] = static_cast<std::int32_t>(e.offset);
+        if constexpr (!kOneMaterial) {
+          const forces::PairEntry& e = row[mat[j]];
+          cut2[c] = e.cutoff2;
+          invDr[c] = e.invDr;
+          lastK[c] = static_cast<float>(e.lastPiece);
+          offset[c] = static_cast<std::int32_t>(e.offset);
+          if constexpr (kVelocity) {
+            damp[c] = e.damping;
+            relv[c] = e.relativeVelocity;
+          }
+        }
         if constexpr (kVelocity) {
           dvxs[c] = vx[j] - uxi;
           dvys[c] = vy[j] - uyi;
           dvzs[c] = vz[j] - uzi;
-          damp[c] = e.damping;
-          relv[c] = e.relativeVelocity;
         }
       }
       // 2. Distances and table positions (SIMD). Out of range: inv = 0, so the pair adds
@@ -236,17 +244,25 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
       // position is clamped into the table (a NaN distance too: the comparison fails).
       for (std::uint32_t c = 0; c < n; ++c) {
         const float r2 = dxs[c] * dxs[c] + dys[c] * dys[c] + dzs[c] * dzs[c];
-        const float in = r2 < cut2[c] ? 1.0f : 0.0f;
+        float cutoff2 = one.cutoff2, pieces = static_cast<float>(one.lastPiece), perR = one.invDr;
+        std::int32_t base = static_cast<std::int32_t>(one.offset);
+        if constexpr (!kOneMaterial) {
+          cutoff2 = cut2[c];
+          pieces = lastK[c];
+          perR = invDr[c];
+          base = offset[c];
+        }
+        const float in = r2 < cutoff2 ? 1.0f : 0.0f;
         const float r = std::sqrt(r2);
         // Divides unconditionally (by 1 for coincident particles) so that the loop has no
         // branch: a division under a condition is not vectorised (it could trap).
         const bool apart = r > 0;
         inv[c] = (apart ? in : 0.0f) / (apart ? r : 1.0f);
-        if constexpr (kVelocity) damp[c] *= in;
-        const float tMax = lastK[c] + 1.0f, tr = r * invDr[c];
+        if constexpr (kVelocity) damp[c] = (kOneMaterial ? one.damping : damp[c]) * in;
+        const float tMax = pieces + 1.0f, tr = r * perR;
         const float t = tr < tMax ? tr : tMax;
-        const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(lastK[c]));
-        piece[c] = offset[c] + 2 * k;
+        const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(pieces));
+        piece[c] = base + 2 * k;
         frac[c] = t - static_cast<float>(k);
       }
       // 3. The sampled function (the one indirect read of the table).
@@ -259,7 +275,7 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
         const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
         float gx = -value[c] * nx, gy = -value[c] * ny, gz = -value[c] * nz;
         if constexpr (kVelocity) {
-          const float vn = relv[c] * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
+          const float vn = (kOneMaterial ? one.relativeVelocity : relv[c]) * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
           gx += vn * nx + damp[c] * dvxs[c];
           gy += vn * ny + damp[c] * dvys[c];
           gz += vn * nz + damp[c] * dvzs[c];
@@ -290,10 +306,11 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
   for (const std::vector<std::uint32_t>& phase : list.phases()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
       for (std::size_t p = range.begin(); p != range.end(); ++p) {
-        if (velocity)
-          layerPairForces<true>(layers[phase[p]], table, s);
+        const PairList::Layer& layer = layers[phase[p]];
+        if (table.materials() == 1)
+          velocity ? layerPairForces<true, true>(layer, table, s) : layerPairForces<false, true>(layer, table, s);
         else
-          layerPairForces<false>(layers[phase[p]], table, s);
+          velocity ? layerPairForces<true, false>(layer, table, s) : layerPairForces<false, false>(layer, table, s);
       }
     });
   }
