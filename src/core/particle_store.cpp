@@ -2,6 +2,9 @@
 
 #include <cassert>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace softsub {
 
 void ParticleStore::reserve(std::size_t n) {
@@ -28,7 +31,11 @@ template <class T>
 void gather(std::vector<T>& a, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
   const std::size_t n = order.size();
   scratch.resize(n);
-  for (std::size_t k = 0; k < n; ++k) scratch[k] = a[order[k]];
+  // In parallel over fixed blocks: each element is written once, whatever the split.
+  using Range = tbb::blocked_range<std::size_t>;
+  tbb::parallel_for(Range(0, n, 16384), [&](const Range& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) scratch[k] = a[order[k]];
+  });
   a.swap(scratch);
 }
 }  // namespace
