@@ -10,7 +10,7 @@
 #include "cache/frame_writer.h"
 #include "core/error.h"
 #include "progress.h"
-#include "scene_view.h"
+#include "surface_options.h"
 #include "session/playback.h"
 #include "surface/surface_writer.h"
 #include "text_format.h"
@@ -22,8 +22,7 @@ CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
       "mesh", "Write the fluids' surfaces (mesh/*.obj, vdb/*.vdb) of a recorded folder");
   mesh->add_option("SIMDIR", o.folder, "The recorded folder (<scene>Sim) or one of its .sim files")->required();
   mesh->add_option("--formats", o.formats, "Surface formats: mesh, vdb or mesh,vdb")->capture_default_str();
-  mesh->add_option("--voxel-size", o.voxelSize, "Voxel edge in scene units (default: particle size / 2)")
-      ->check(CLI::NonNegativeNumber);
+  addSurfaceOptions(mesh, o.surface, "");
   mesh->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return mesh;
 }
@@ -34,9 +33,8 @@ int meshCommand(const MeshOptions& o) {
     throw InputError({"command line", 0, "--formats"}, fmt::format("'{}' is not a surface format list", o.formats),
                      "mesh, vdb or mesh,vdb");
   const session::Playback playback(o.folder);
-  checkSurfaceVoxel(o.voxelSize, playback.load(0), "--voxel-size");
-  surface::SurfaceSettings settings;
-  settings.voxelSize = o.voxelSize;
+  checkSurfaceOptions(o.surface, playback.load(0));
+  const surface::SurfaceSettings& settings = o.surface;
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 
   const bool chatty = stderrIsTerminal() && !o.quiet;

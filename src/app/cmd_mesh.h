@@ -2,6 +2,8 @@
 /// `softsub mesh SIMDIR`: the fluids' surfaces of a recorded folder, afterwards.
 #include <string>
 
+#include "surface/surface.h"
+
 namespace CLI {
 class App;
 }
@@ -12,7 +14,7 @@ namespace softsub::app {
 struct MeshOptions {
   std::string folder;              ///< the recorded folder (or one of its .sim files)
   std::string formats = "mesh";    ///< mesh, vdb or both (comma-separated)
-  double voxelSize = 0.0;          ///< 0: particle size / 2 (SurfaceSettings's default)
+  surface::SurfaceSettings surface;  ///< --voxel-size, --blob-radius
   bool quiet = false;              ///< nothing on stderr but errors
 };
 

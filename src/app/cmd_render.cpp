@@ -22,6 +22,7 @@
 #include "scene/compile.h"
 #include "scene_source.h"
 #include "scene_view.h"
+#include "surface_options.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
 #include "text_format.h"
@@ -45,16 +46,16 @@ constexpr int kMaxSide = 16384;
 class PictureObserver : public FrameObserver {
  public:
   PictureObserver(PictureMaker& maker, render::Camera camera, std::filesystem::path out, std::string scene,
-                  FrameRange range, std::optional<double> surfaceVoxel)
+                  FrameRange range, std::optional<surface::SurfaceSettings> surfaces)
       : maker_(maker),
         camera_(std::move(camera)),
         out_(std::move(out)),
         scene_(std::move(scene)),
         range_(range),
-        surfaceVoxel_(surfaceVoxel) {}
+        surfaces_(std::move(surfaces)) {}
   void onFrame(const FrameSnapshot& frame) override {
     if (!range_.contains(frame.frame)) return;
-    const auto surfaces = surfaceVoxel_ ? surfacesOf(frame, *surfaceVoxel_) : std::vector<render::RenderSurface>{};
+    const auto surfaces = surfaces_ ? surfacesOf(frame, *surfaces_) : std::vector<render::RenderSurface>{};
     maker_.write(picturePath(out_, scene_, frame.frame), frame, camera_, surfaces);
     if (first < 0) first = frame.frame;
     last = frame.frame;
@@ -68,7 +69,7 @@ class PictureObserver : public FrameObserver {
   std::filesystem::path out_;
   std::string scene_;
   FrameRange range_;
-  std::optional<double> surfaceVoxel_;  // set: draw surfaces with this voxel (0: default)
+  std::optional<surface::SurfaceSettings> surfaces_;  // set: draw surfaces with these settings
 };
 
 void checkSize(const RenderOptions& o) {
@@ -172,8 +173,7 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--surface", o.surface,
                 "Draw each fluid's surface (as softsub mesh makes it) instead of its particles");
-  cmd->add_option("--voxel-size", o.voxelSize, "Surface voxel edge in scene units (default: particle size / 2)")
-      ->check(CLI::NonNegativeNumber);
+  addSurfaceOptions(cmd, o.surfaceSettings, "; with --surface");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return cmd;
 }
@@ -181,9 +181,11 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
 int renderCommand(const RenderOptions& o) {
   checkSize(o);
   const FrameRange range = parseFrameRange(o.frames, "--frames");
-  if (o.voxelSize > 0.0 && !o.surface)
-    throw InputError({"command line", 0, "--voxel-size"}, "is for surfaces", "add --surface, or leave out --voxel-size");
-  const std::optional<double> surfaceVoxel = o.surface ? std::optional<double>(o.voxelSize) : std::nullopt;
+  if (surfaceOptionsGiven(o.surfaceSettings) && !o.surface)
+    throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
+                     "add --surface, or leave them out");
+  const std::optional<surface::SurfaceSettings> surfaceSettings =
+      o.surface ? std::optional<surface::SurfaceSettings>(o.surfaceSettings) : std::nullopt;
   if (!o.movie.empty() && findFfmpeg().empty())
     throw InputError({"command line", 0, "--movie"}, "ffmpeg is not installed", "install ffmpeg, or leave out --movie");
   const bool chatty = stderrIsTerminal() && !o.quiet;
@@ -216,11 +218,11 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("no frame of {} is in '{}'", o.input, o.frames),
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
-    if (o.surface) checkSurfaceVoxel(o.voxelSize, rec.load(0), "--voxel-size");
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0));
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
-    observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceVoxel);
+    observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceSettings);
     pictures = &*observer;
     ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
     for (std::size_t i = 0; i < rec.frameCount(); ++i) {
@@ -246,10 +248,10 @@ int renderCommand(const RenderOptions& o) {
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
-    if (o.surface) checkSurfaceVoxel(o.voxelSize, sim.snapshot(), "--voxel-size");
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot());
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
-    observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceVoxel);
+    observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);
     pictures = &*observer;
     FrameObserver* observers[] = {pictures};
     ProgressLine progress(chatty, lastFrame, particles);

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "surface/surface.h"
+
 namespace CLI {
 class App;
 }
@@ -25,7 +27,7 @@ struct RenderOptions {
   std::uint64_t maxParticles = 0;         ///< as `run --max-particles`
   bool quiet = false;                     ///< nothing on stderr but errors
   bool surface = false;                   ///< draw each fluid's surface instead of its particles
-  double voxelSize = 0.0;                 ///< surface voxel, scene units; 0: half the particle size
+  surface::SurfaceSettings surfaceSettings;  ///< --voxel-size, --blob-radius (with --surface)
 };
 
 /// An inclusive frame range; `last` unset means "to the end".

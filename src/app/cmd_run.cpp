@@ -22,6 +22,7 @@
 #include "scene_source.h"
 #include "session/object_meshes.h"
 #include "scene_view.h"
+#include "surface_options.h"
 #include "solver/energy.h"
 #include "solver/frame_loop.h"
 #include "stop_signal.h"
@@ -122,9 +123,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
   run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply,mesh,vdb (any of them), all (sim,pdc,ply) or none; mesh and vdb are fluid surfaces (slow)")
       ->capture_default_str();
-  run->add_option("--voxel-size", o.voxelSize,
-                  "Surface voxel edge in scene units for mesh and vdb (default: half each fluid's particle size)")
-      ->check(CLI::NonNegativeNumber);
+  addSurfaceOptions(run, o.surface, "; for mesh and vdb");
   run->add_flag("--stats", o.stats,
                 "Print each frame's energies on stdout: frame, time, kinetic, pair, gravity, bodies, total");
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
@@ -172,9 +171,10 @@ int runCommand(const RunOptions& o) {
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
-  if (o.voxelSize > 0.0 && !(formats.mesh || formats.vdb))
-    throw InputError({"command line", 0, "--voxel-size"}, "is for surfaces", "add mesh or vdb to --formats, or leave out --voxel-size");
-  checkSurfaceVoxel(o.voxelSize, sim.snapshot(), "--voxel-size");
+  if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
+    throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
+                     "add mesh or vdb to --formats, or leave them out");
+  checkSurfaceOptions(o.surface, sim.snapshot());
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets nothing but errors.
   const bool chatty = stderrIsTerminal() && !o.quiet;
@@ -184,9 +184,7 @@ int runCommand(const RunOptions& o) {
   cache::FrameWriter writer(outDir, loaded.name, formats);
   writer.setObjectMeshes(std::move(meshes));
   // The surfaces after the cache files: a frame's mesh/ and vdb/ files come after its .sim.
-  surface::SurfaceSettings surfaceSettings;
-  surfaceSettings.voxelSize = o.voxelSize;
-  surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb, surfaceSettings);
+  surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb, o.surface);
   LastFrame done;
   std::vector<FrameObserver*> observers;
   if (formats.sim || formats.pdc || formats.ply) observers.push_back(&writer);

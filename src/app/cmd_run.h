@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "surface/surface.h"
+
 namespace CLI {
 class App;
 }
@@ -26,7 +28,7 @@ struct RunOptions {
   std::int64_t stopRecordingAt = -1;  ///< -stopRecordingAt F; -1: no limit
   std::string drawPerFrame;           ///< -drawPerFrame X; accepted and ignored (viewer)
   bool preview = false;               ///< --preview: a PNG of the last frame in the output folder
-  double voxelSize = 0.0;             ///< --voxel-size for mesh/vdb; 0: half the particle size
+  surface::SurfaceSettings surface;   ///< --voxel-size, --blob-radius for mesh/vdb
   bool stats = false;                 ///< --stats: per-frame energies on stdout
 };
 

@@ -1,9 +1,6 @@
 #include "scene_view.h"
 
-#include <fmt/format.h>
-
 #include "cache/atomic_file.h"
-#include "core/error.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "surface/surface.h"
@@ -71,22 +68,8 @@ void PictureMaker::write(const std::filesystem::path& path, const FrameSnapshot&
   cache::writeFileAtomic(path, render::encodePng(draw(frame, camera, surfaces)));
 }
 
-void checkSurfaceVoxel(double voxelSize, const FrameSnapshot& frame, const std::string& option) {
-  if (voxelSize <= 0.0) return;
-  for (const FluidSnapshot& f : frame.fluids) {
-    const double least = surface::minimumVoxelSize(f.particleSize);
-    if (voxelSize < least)
-      throw InputError({"command line", 0, option},
-                       fmt::format("{:g} is too small for fluid '{}' (particle size {:g})", voxelSize, f.name,
-                                   f.particleSize),
-                       fmt::format("at least {:g} (blob radius / 64)", least));
-  }
-}
-
-std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, double voxelSize) {
+std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, const surface::SurfaceSettings& settings) {
   std::vector<render::RenderSurface> out;
-  surface::SurfaceSettings settings;
-  settings.voxelSize = voxelSize;
   for (std::size_t i = 0; i < frame.fluids.size(); ++i) {
     const FluidSnapshot& f = frame.fluids[i];
     if (f.count() == 0) continue;

@@ -14,6 +14,7 @@
 #include "render/image.h"
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
+#include "surface/surface.h"
 
 namespace softsub::render {
 class OffscreenContext;
@@ -34,12 +35,9 @@ namespace softsub::app {
 [[nodiscard]] render::Camera cameraOf(const scene::CameraDesc& camera);
 
 /// Each non-empty fluid's surface in `frame` (softsub::surface's blobby level set, at its
-/// particle size, `voxelSize` 0 = its default), for drawing instead of the particles.
-[[nodiscard]] std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, double voxelSize = 0.0);
-
-/// InputError naming `option` when `voxelSize` (> 0) is too small to mesh a fluid of
-/// `frame` (below surface::minimumVoxelSize for its particle size).
-void checkSurfaceVoxel(double voxelSize, const FrameSnapshot& frame, const std::string& option);
+/// particle size), for drawing instead of the particles.
+[[nodiscard]] std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame,
+                                                           const surface::SurfaceSettings& settings = {});
 
 /// Draws frames into pictures off-screen (EGL), all of one size.
 class PictureMaker {

@@ -61,13 +61,53 @@ TEST(SurfaceCli, VoxelSizeReachesTheLevelSetsAndIsCheckedFirst) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "o/vdb" / (frameName(0) + ".vdb")).voxelSize(), 0.25, 1e-9);
   // Without a surface format, and below blob radius / 64 (1.5 / 64): refused, nothing made.
-  for (const std::string bad : {"--formats sim --voxel-size 0.25", "--formats mesh --voxel-size 0.01"}) {
+  for (const std::string bad : {"--formats sim --voxel-size 0.25", "--formats mesh --voxel-size 0.01",
+                                "--formats sim --blob-radius 2", "--formats mesh --blob-radius 9"}) {
     const RunResult refused =
         runSoftsub("run -q --frames 0 " + bad + " --out " + quote(tmp / "bad") + " " + quote(scene), tmp.path());
     EXPECT_EQ(refused.code, 2) << bad << ": " << refused.err;
-    EXPECT_NE(refused.err.find("--voxel-size"), std::string::npos) << refused.err;
+    EXPECT_TRUE(refused.err.find("--voxel-size") != std::string::npos ||
+                refused.err.find("--blob-radius") != std::string::npos)
+        << refused.err;
     EXPECT_FALSE(fs::exists(tmp / "bad")) << bad;
   }
+}
+
+// Total area of a triangle mesh.
+double area(const surface::SurfaceMesh& m) {
+  double a = 0;
+  for (const auto& t : m.triangles) {
+    const auto& p = m.vertices[t[0]];
+    const auto& q = m.vertices[t[1]];
+    const auto& r = m.vertices[t[2]];
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    a += 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  }
+  return a;
+}
+
+TEST(SurfaceCli, ALargerBlobRadiusSmoothsTheSurfaceAndKeepsTheVolume) {
+  // The smoothing option: a larger blob radius blends the particles' bumps away, so the
+  // same (preserved) volume is wrapped in less area.
+  TempDir tmp;
+  const fs::path scene = examplesDir() / "honey-drop.scene";
+  const double count = fluidCounts(scene).at(0);  // ParticleSize 1: rest volume = count
+  double areas[2] = {0, 0};
+  int k = 0;
+  for (const std::string radius : {"1.5", "3.0"}) {
+    const fs::path out = tmp / ("r" + radius);
+    const RunResult r = runSoftsub("run -q --frames 0 --formats mesh --blob-radius " + radius + " --out " + quote(out) +
+                                       " " + quote(scene),
+                                   tmp.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const fs::path obj = out / "mesh" / (frameName(0) + ".obj");
+    const surface::SurfaceMesh mesh = asSurfaceMesh(cache::decodeObj(readFile(obj), obj.string()));
+    EXPECT_TRUE(surface::isClosedAndOriented(mesh)) << radius;
+    EXPECT_NEAR(surface::enclosedVolume(mesh), count, 0.05 * count) << radius;
+    areas[k++] = area(mesh);
+  }
+  EXPECT_LT(areas[1], 0.97 * areas[0]) << "blob radius 1.5: area " << areas[0] << ", 3.0: " << areas[1];
 }
 
 TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
