@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -191,21 +190,33 @@ std::optional<Result> runLammps(const std::string& lmp, int ranks, const fs::pat
     why = fmt::format("LAMMPS exited with status {} (log: {})", status, log.string());
     return std::nullopt;
   }
-  std::smatch m;
-  const std::regex loop(R"(Loop time of ([0-9.eE+-]+) on)");
-  if (!std::regex_search(out, m, loop)) {
+  // "Loop time of <seconds> on <P> procs for <steps> steps with <N> atoms".
+  const std::string marker = "Loop time of ";
+  const std::size_t at = out.find(marker);
+  char* end = nullptr;
+  const double seconds = at == std::string::npos ? 0.0 : std::strtod(out.c_str() + at + marker.size(), &end);
+  if (!(seconds > 0.0)) {
     why = "no 'Loop time' in LAMMPS's output (" + log.string() + ")";
     return std::nullopt;
   }
   Result r;
-  r.atomStepsPerSecond = static_cast<double>(atoms) * steps / std::stod(m[1].str());
-  // The thermo line of the last step: "<steps> ke pe etotal".
-  const std::regex thermo(fmt::format(R"((^|\n)\s*{}\s+(\S+)\s+(\S+)\s+(\S+))", steps));
-  if (!std::regex_search(out, m, thermo)) {
+  r.atomStepsPerSecond = static_cast<double>(atoms) * steps / seconds;
+  // The thermo line of the last step: "<steps> ke pe etotal" (the last such line).
+  bool found = false;
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string step;
+    double ke = 0, pe = 0, total = 0;
+    if (fields >> step >> ke >> pe >> total && step == std::to_string(steps)) {
+      r.energy = total;
+      found = true;
+    }
+  }
+  if (!found) {
     why = "no thermo line for step " + std::to_string(steps) + " in " + log.string();
     return std::nullopt;
   }
-  r.energy = std::stod(m[4].str());
   return r;
 }
 
