@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "cmd_render.h"
 #include "core/error.h"
 #include "scene/compile.h"
 #include "scene/writer.h"
@@ -127,17 +128,6 @@ void writeLammpsInput(const fs::path& data, double cutoff, int steps, const fs::
                      kTimeStep, steps);
   out << fmt::format("run {}\n", steps);
   if (!out) throw IoError("cannot write " + file.string());
-}
-
-std::string findOnPath(const std::string& name) {
-  if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? name : std::string();
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/bin:/bin");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return {};
 }
 
 /// Runs argv with stdout and stderr into `log`; returns the exit status (-1: not started).

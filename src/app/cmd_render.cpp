@@ -115,18 +115,21 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
   return r;
 }
 
-std::string findFfmpeg() {
+std::string findOnPath(const std::string& name) {
+  if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? name : std::string();
   const char* path = std::getenv("PATH");
   std::string_view rest = path ? path : "/usr/bin:/bin";
   while (true) {
     const auto colon = rest.find(':');
     const std::filesystem::path dir(std::string(rest.substr(0, colon)));
-    const std::filesystem::path candidate = (dir.empty() ? std::filesystem::path(".") : dir) / "ffmpeg";
+    const std::filesystem::path candidate = (dir.empty() ? std::filesystem::path(".") : dir) / name;
     if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
     if (colon == std::string_view::npos) return {};
     rest.remove_prefix(colon + 1);
   }
 }
+
+std::string findFfmpeg() { return findOnPath("ffmpeg"); }
 
 void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie) {
   const std::string ffmpeg = findFfmpeg();

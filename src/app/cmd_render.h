@@ -55,6 +55,10 @@ int renderCommand(const RenderOptions& options);
 /// (H.264, yuv420p). IoError when ffmpeg is missing or fails.
 void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie);
 
+/// The path of the executable `name` on PATH (or `name` itself when it holds a '/' and
+/// is executable), or empty.
+[[nodiscard]] std::string findOnPath(const std::string& name);
+
 /// The path of ffmpeg on PATH, or empty.
 [[nodiscard]] std::string findFfmpeg();
 

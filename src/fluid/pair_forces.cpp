@@ -301,8 +301,7 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
   const auto layers = list.layers();
   // Phase by phase: a layer writes to its own slots and the next layer's, which no other
   // layer of its phase touches; each slot's force is summed in slot and phase order.
-  bool velocity = false;
-  for (const forces::PairEntry& e : table.entries()) velocity = velocity || e.damping != 0 || e.relativeVelocity != 0;
+  const bool velocity = table.hasVelocityTerms();
   for (const std::vector<std::uint32_t>& phase : list.phases()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
       for (std::size_t p = range.begin(); p != range.end(); ++p) {

@@ -66,10 +66,17 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   e.damping = static_cast<float>(in.damping);
   e.relativeVelocity = static_cast<float>(in.relativeVelocity);
   e.lastPiece = static_cast<std::uint32_t>(intervals_ - 1);
-  entries_[a * materials_ + b] = e;
-  entries_[b * materials_ + a] = e;
+  // Count the entries with a velocity term as they are replaced (O(1) per set()).
+  const auto moving = [](const PairEntry& p) { return p.damping != 0 || p.relativeVelocity != 0; };
+  for (const std::size_t k : {a * materials_ + b, b * materials_ + a}) {
+    velocityEntries_ -= moving(entries_[k]) ? 1 : 0;
+    velocityEntries_ += moving(e) ? 1 : 0;
+    entries_[k] = e;
+    if (a == b) break;
+  }
   described_[a * materials_ + b] = in;
   described_[b * materials_ + a] = in;
+
   // Only rows a and b changed: O(materials) per set(), so compiling many fluids
   // stays quadratic in the number of pairs it sets, not worse.
   for (const std::size_t r : {a, b}) {

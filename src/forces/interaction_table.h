@@ -78,6 +78,9 @@ class InteractionTable {
   [[nodiscard]] std::span<const float> samples() const { return samples_; }
   /// Squared longest cutoff of material a with any material (kernel pre-filter).
   [[nodiscard]] float rowCutoff2(std::size_t a) const { return rowCutoff2_[a]; }
+  /// Whether some pair has a damping or relative-velocity term (the kernel loads
+  /// velocities only then).
+  [[nodiscard]] bool hasVelocityTerms() const { return velocityEntries_ > 0; }
   /// The longest cutoff of any pair (the grid's cell size is this plus the list skin).
   [[nodiscard]] double maxCutoff() const;
   /// The sampled function of (a, b) evaluated at r, as the kernel does.
@@ -91,6 +94,7 @@ class InteractionTable {
   std::vector<PairEntry> entries_;
   std::vector<Interaction> described_;
   std::vector<float> samples_;
+  std::size_t velocityEntries_ = 0;  // entries with a damping or relative-velocity term
   std::vector<float> rowCutoff2_;
   std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
 };

@@ -27,25 +27,34 @@ forces::InteractionTable threeMaterials() {
   return t;
 }
 
+void zeroForces(ParticleStore& s) {
+  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
+  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
+  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+}
+
+// The forces in `s` against referencePairForces: the largest error per particle within
+// 2e-3 of the largest force (the cloud must interact).
+void expectMatchesReference(const forces::InteractionTable& table, const ParticleStore& s) {
+  std::vector<double> rx, ry, rz;
+  referencePairForces(table, s, rx, ry, rz);
+  double worst = 0, scale = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    worst = std::max(worst, std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]));
+    scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
+  }
+  ASSERT_GT(scale, 1.0) << "the cloud must be dense enough to interact";
+  EXPECT_LT(worst, 2e-3 * scale);
+}
+
 TEST(PairForces, MatchesBruteForceReference) {
   const auto table = threeMaterials();
   ParticleStore s = scenarios::randomCloud(1200, -4, 4, 2.0f, 3, 11);
   neighbors::CellGrid grid;
   grid.rebuild(s, static_cast<float>(table.maxCutoff()));
-  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
-  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
-  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  zeroForces(s);
   accumulatePairForces(grid, table, s);
-  std::vector<double> rx, ry, rz;
-  referencePairForces(table, s, rx, ry, rz);
-  double worst = 0, scale = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const double e = std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]);
-    worst = std::max(worst, e);
-    scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
-  }
-  ASSERT_GT(scale, 1.0) << "the cloud must be dense enough to interact";
-  EXPECT_LT(worst, 2e-3 * scale);
+  expectMatchesReference(table, s);
 }
 
 TEST(PairForces, NewtonsThirdLawSumsToZero) {
@@ -148,11 +157,6 @@ TEST(PairList, ExcludesPairsOfOneRigidOwnerAndHonoursRowRadii) {
   EXPECT_EQ(plain.pairCount(), brute);
 }
 
-}  // namespace
-}  // namespace softsub::fluid
-
-namespace softsub::fluid {
-namespace {
 
 // The kernel's other instance (no velocity term anywhere: velocities never loaded) and
 // listed pairs that are out of range now (a skin): each must add exactly nothing.
@@ -167,19 +171,9 @@ TEST(PairForces, ConservativeModelWithASkinMatchesTheReference) {
   grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
   PairList list;
   list.build(grid, table, s, skin);
-  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
-  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
-  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  zeroForces(s);
   accumulatePairForces(list, table, s);
-  std::vector<double> rx, ry, rz;
-  referencePairForces(table, s, rx, ry, rz);
-  double worst = 0, scale = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    worst = std::max(worst, std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]));
-    scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
-  }
-  ASSERT_GT(scale, 1.0);
-  EXPECT_LT(worst, 2e-3 * scale);
+  expectMatchesReference(table, s);
   // The skin listed pairs beyond every cutoff (the ones the kernel must zero).
   std::size_t beyond = 0;
   for (std::size_t i = 0; i < s.size(); ++i)

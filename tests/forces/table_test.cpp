@@ -111,11 +111,6 @@ TEST(InteractionTable, SymmetricEntriesSharedSamplesAndMaxCutoff) {
   }
 }
 
-}  // namespace
-}  // namespace softsub::forces
-
-namespace softsub::forces {
-namespace {
 
 TEST(InteractionTable, PairsThatDoNothingPointAtAZeroPiece) {
   // The pair kernel reads every listed pair's table whatever the distance (branch-free):

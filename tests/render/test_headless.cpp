@@ -109,10 +109,16 @@ Rgb pixelAt(const Image& im, const Camera& c, const Vec3& p) {
   return out;
 }
 
-TEST_F(Headless, FluidsAppearInTheirColourWhereTheyProject) {
+/// A red blob at (-5, 3, 0) and a green one at (5, 3, 0).
+FrameSnapshot redAndGreen() {
   FrameSnapshot frame;
   frame.fluids.push_back(blob("red", {0.9f, 0.1f, 0.1f}, {-5, 3, 0}, 4, 1));
   frame.fluids.push_back(blob("green", {0.1f, 0.85f, 0.15f}, {5, 3, 0}, 4, 1));
+  return frame;
+}
+
+TEST_F(Headless, FluidsAppearInTheirColourWhereTheyProject) {
+  const FrameSnapshot frame = redAndGreen();
   const Camera cam = frontCamera();
   const Image im = render(boxScene(false), frame, cam, 320, 240);
   ASSERT_EQ(im.width, 320);
@@ -214,11 +220,6 @@ TEST_F(Headless, AReflectiveFloorMirrorsTheFluid) {
   EXPECT_TRUE(reddish(pixelAt(mirror, cam, {0, 2.5, 0})));
 }
 
-}  // namespace
-}  // namespace softsub::render
-
-namespace softsub::render {
-namespace {
 
 /// A closed cube of half-edge h around c, with outward normals at its corners.
 RenderSurface cubeSurface(std::size_t fluid, Vec3 c, float h) {
@@ -237,9 +238,7 @@ RenderSurface cubeSurface(std::size_t fluid, Vec3 c, float h) {
 }
 
 TEST_F(Headless, ASurfaceReplacesItsFluidsParticles) {
-  FrameSnapshot frame;
-  frame.fluids.push_back(blob("red", {0.9f, 0.1f, 0.1f}, {-5, 3, 0}, 4, 1));
-  frame.fluids.push_back(blob("green", {0.1f, 0.85f, 0.15f}, {5, 3, 0}, 4, 1));
+  const FrameSnapshot frame = redAndGreen();
   const Camera cam = frontCamera();
   std::vector<RenderSurface> surfaces{cubeSurface(0, {0, 10, 0}, 1.5f)};
   // Malformed ones are skipped, not drawn and not fatal: a fluid that does not exist, a
