@@ -14,11 +14,15 @@
 
 #include "cache/atomic_file.h"
 #include "cache/frame_writer.h"
+#include "cache/manifest.h"
 #include "cache/naming.h"
 #include "core/error.h"
 #include "progress.h"
+#include "run_journal.h"
 #include "scene/compile.h"
 #include "scene/schema.h"
+#include "scene/writer.h"
+#include "solver/checkpoint.h"
 #include "scene_source.h"
 #include "session/object_meshes.h"
 #include "scene_view.h"
@@ -51,12 +55,12 @@ class StatsObserver : public FrameObserver {
   explicit StatsObserver(const solver::Simulation& sim) : sim_(sim) {}
   void onFrame(const FrameSnapshot& frame) override {
     if (!headerDone_) {
-      fmt::print("# frame time kinetic pair gravity bodies total\n");
+      fmt::print("# frame time kinetic pair gravity bodies total substeps travel\n");
       headerDone_ = true;
     }
     const solver::EnergyReport e = solver::measureEnergy(sim_.model(), sim_.state());
-    fmt::print("{} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", frame.frame, frame.time, e.kinetic, e.pair, e.gravity,
-               e.bodies, e.total());
+    fmt::print("{} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {} {:.4g}\n", frame.frame, frame.time, e.kinetic, e.pair,
+               e.gravity, e.bodies, e.total(), sim_.substeps(), sim_.travelPerSubstep());
     std::fflush(stdout);
   }
 
@@ -104,6 +108,24 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
 
 bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
 
+/// A hash of everything that decides a run's outputs except how many frames it runs:
+/// the scene after the overrides, its initial particles (fills and meshes included),
+/// the output and solver options, and the softsub version. A resumed run must match it;
+/// leaving the frame count out lets a finished run be extended.
+std::uint64_t runFingerprint(const RunOptions& o, scene::SceneDesc desc, const cache::Formats& formats,
+                             const solver::Model& model, const solver::State& initial) {
+  desc.simulation.frames = 1;
+  std::uint64_t h = solver::hashBytes(scene::writeSceneText(desc));
+  const ParticleStore& s = initial.particles;
+  for (const std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz})
+    h = solver::hashBytes({reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float)}, h);
+  const std::string options = fmt::format(
+      "softsub {}|formats {}|voxel {:.17g}|blob {:.17g}|adaptive {} {}|speed-limit {:.17g}|record-up-to {}",
+      SOFTSUB_VERSION, cache::formatsToString(formats), o.surface.voxelSize, o.surface.radiusScale,
+      model.adaptiveSubsteps, model.maxSubsteps, model.maxTravelPerSubstep, o.stopRecordingAt);
+  return solver::hashBytes(options, h);
+}
+
 std::string folderText(const std::filesystem::path& dir) {
   std::string s = dir.generic_string();
   if (s.empty()) s = ".";
@@ -125,7 +147,27 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
       ->capture_default_str();
   addSurfaceOptions(run, o.surface, "; for mesh and vdb");
   run->add_flag("--stats", o.stats,
-                "Print each frame's energies on stdout: frame, time, kinetic, pair, gravity, bodies, total");
+                "Print each frame's energies on stdout: frame, time, kinetic, pair, gravity, bodies, total, "
+                "substeps, travel");
+  run->add_flag("--resume", o.resume,
+                "Continue a run that stopped (killed, interrupted, failed) after its last complete frame; the "
+                "outputs are byte-identical to an uninterrupted run. Starts at frame 0 when there is nothing to "
+                "resume");
+  run->add_option("--checkpoint-every", o.checkpointEvery,
+                  "Write the solver state every K frames (and at the last) for --resume; 0: never")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  run->add_flag("--adaptive", o.adaptive,
+                "Choose each frame's substeps from the fastest particle, the strongest force and the stability "
+                "estimate (at least the scene's Substeps)");
+  run->add_option("--max-substeps", o.maxSubsteps, "The most substeps --adaptive may choose for a frame")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  run->add_option("--speed-limit", o.speedLimit,
+                  "Blow-up check: the most interaction distances a particle may cover in one substep; 0: no "
+                  "speed check (non-finite values always stop the run)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
                                                      std::end(scene::kIntegratorNames))));
@@ -165,7 +207,14 @@ int runCommand(const RunOptions& o) {
 
   if (formats.sim)
     for (const scene::ObjectDesc& obj : loaded.desc.objects) cache::checkFileNamePart(obj.name, "Object/Name");
+  if (o.resume && !anyFormat(formats))
+    throw InputError({"command line", 0, "--resume"}, "there is nothing to resume: this run writes no files",
+                     "--resume with at least one output format");
   scene::Compiled compiled = scene::compile(loaded.desc);
+  compiled.model.adaptiveSubsteps = o.adaptive;
+  compiled.model.maxSubsteps = o.maxSubsteps;
+  compiled.model.maxTravelPerSubstep = o.speedLimit;
+  const std::uint64_t fingerprint = runFingerprint(o, loaded.desc, formats, compiled.model, compiled.state);
   std::vector<cache::ObjectMesh> meshes = session::objectMeshesForCache(compiled.model, compiled.objectMeshes, loaded.name);
   std::optional<render::RenderScene> view;
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
@@ -181,14 +230,47 @@ int runCommand(const RunOptions& o) {
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
 
+  // A killed run's temporary files go first; then, resuming, the run in the folder is
+  // checked and restored, or, starting afresh, its manifests and checkpoints are dropped.
+  ResumePoint resumed;
+  if (anyFormat(formats)) {
+    const std::size_t stale = cache::removeStaleTemporaries(outDir);
+    if (stale > 0 && chatty) fmt::print(stderr, "note: removed {} unfinished temporary file(s) of a stopped run\n", stale);
+    if (o.resume) {
+      resumed = resumeFrom(outDir, loaded.name, fingerprint, sim);
+      if (resumed.frame < 0 && chatty)
+        fmt::print(stderr, "note: nothing to resume ({}): starting at frame 0\n", resumed.note);
+      if (resumed.frame >= 0 && chatty)
+        fmt::print(stderr, "resuming after frame {} ({} complete)\n", resumed.frame, folderText(outDir));
+      if (resumed.frame >= lastFrame) {
+        if (chatty) fmt::print(stderr, "done: frames 0..{} were already complete\n", resumed.frame);
+        return static_cast<int>(ExitCode::Ok);
+      }
+    }
+    if (resumed.frame < 0) forgetEarlierRun(outDir, loaded.name);
+  }
+
   cache::FrameWriter writer(outDir, loaded.name, formats);
-  writer.setObjectMeshes(std::move(meshes));
+  if (resumed.frame < 0) writer.setObjectMeshes(std::move(meshes));  // frame 0 wrote them
   // The surfaces after the cache files: a frame's mesh/ and vdb/ files come after its .sim.
   surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb, o.surface);
   LastFrame done;
+  done.last = resumed.frame;
   std::vector<FrameObserver*> observers;
-  if (formats.sim || formats.pdc || formats.ply) observers.push_back(&writer);
-  if (formats.mesh || formats.vdb) observers.push_back(&surfaces);
+  std::vector<WrittenFiles> written;
+  if (formats.sim || formats.pdc || formats.ply) {
+    observers.push_back(&writer);
+    written.emplace_back([&writer] { return writer.lastWritten(); });
+  }
+  if (formats.mesh || formats.vdb) {
+    observers.push_back(&surfaces);
+    written.emplace_back([&surfaces] { return surfaces.lastWritten(); });
+  }
+  // The manifest after every file of the frame: it marks the frame complete.
+  std::optional<RunJournal> journal;
+  if (anyFormat(formats))
+    observers.push_back(&journal.emplace(outDir, loaded.name, fingerprint, o.checkpointEvery, lastFrame, sim,
+                                         std::move(written)));
   observers.push_back(&done);
   std::optional<StatsObserver> stats;
   if (o.stats) observers.push_back(&stats.emplace(sim));
@@ -197,7 +279,13 @@ int runCommand(const RunOptions& o) {
   solver::FrameLoopHooks hooks;
   hooks.stop = &installStopHandlers();
   hooks.recordUpTo = o.stopRecordingAt;
-  hooks.onProgress = [&](const solver::FrameProgress& p) { progress.update(p); };
+  hooks.emitInitial = resumed.frame < 0;
+  int fewestSubsteps = std::numeric_limits<int>::max(), mostSubsteps = 0;
+  hooks.onProgress = [&](const solver::FrameProgress& p) {
+    fewestSubsteps = std::min(fewestSubsteps, sim.substeps());
+    mostSubsteps = std::max(mostSubsteps, sim.substeps());
+    progress.update(p);
+  };
 
   const std::string where = anyFormat(formats) ? folderText(outDir) : std::string("nothing written");
   bool complete = false;
@@ -231,6 +319,8 @@ int runCommand(const RunOptions& o) {
       fmt::print(stderr, "warning: no preview picture: {}\n", e.what());
     }
   }
+  if (chatty && o.adaptive && mostSubsteps > 0)
+    fmt::print(stderr, "adaptive substeps: {}..{} per frame\n", fewestSubsteps, mostSubsteps);
   if (chatty)
     fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}{}\n",
                countOf(static_cast<std::uint64_t>(progress.framesDone()), "frame"),

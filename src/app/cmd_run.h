@@ -30,6 +30,11 @@ struct RunOptions {
   bool preview = false;               ///< --preview: a PNG of the last frame in the output folder
   surface::SurfaceSettings surface;   ///< --voxel-size, --blob-radius for mesh/vdb
   bool stats = false;                 ///< --stats: per-frame energies on stdout
+  bool resume = false;                ///< --resume: continue after the last complete frame
+  int checkpointEvery = 1;            ///< --checkpoint-every K (0: no checkpoints)
+  bool adaptive = false;              ///< --adaptive: substeps chosen per frame
+  int maxSubsteps = 10000;            ///< --max-substeps: the most --adaptive may choose
+  double speedLimit = 10;             ///< --speed-limit: interaction distances per substep (0: off)
 };
 
 /// Adds the `run` subcommand bound to `options` and returns it.

@@ -1,5 +1,6 @@
 // softsub: the command line. Parses, dispatches to one command, and maps every error
 // to its exit code (core/error.h, docs/cli.md) in this one place.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -100,6 +101,10 @@ int runApp(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) kills a process that writes past it unless SIGXFSZ is
+  // ignored; ignored, the write fails with EFBIG and the run stops with an I/O error
+  // (exit 3) like on a full disk, its earlier frames intact.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     return runApp(argc, argv);
   } catch (const softsub::InputError& e) {

@@ -171,7 +171,7 @@ void LiveSession::advanceFrame() {
     throw;
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  lastStepMs_ = ms / model_->substeps;
+  lastStepMs_ = ms / sim_->substeps();
   refreshSnapshot();
   record();
 }
@@ -181,17 +181,17 @@ bool LiveSession::advanceSubstep() {
     throw BlowUpError(fmt::format("the simulation blew up after frame {}: restart it or change the settings",
                                   snapshot_.frame));
   const auto start = std::chrono::steady_clock::now();
-  sim_->step();
-  ++substepInFrame_;
-  const bool frameDone = substepInFrame_ >= model_->substeps;
-  if (frameDone) {
-    substepInFrame_ = 0;
-    try {
+  const bool frameDone = substepInFrame_ + 1 >= sim_->substeps();
+  try {
+    sim_->step();  // checks every substep
+    ++substepInFrame_;
+    if (frameDone) {
+      substepInFrame_ = 0;
       sim_->finishFrame();
-    } catch (const BlowUpError&) {
-      blownUp_ = true;
-      throw;
     }
+  } catch (const BlowUpError&) {
+    blownUp_ = true;
+    throw;
   }
   lastStepMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   refreshSnapshot();

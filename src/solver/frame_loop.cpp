@@ -14,7 +14,7 @@ bool runFrames(Simulation& sim, std::int64_t lastFrame, std::span<FrameObserver*
     sim.snapshot(snap);
     for (FrameObserver* o : observers) o->onFrame(snap);
   };
-  if (sim.state().frame == 0) emit();
+  if (sim.state().frame == 0 && hooks.emitInitial) emit();
   while (sim.state().frame < lastFrame) {
     if (hooks.stop && hooks.stop->load()) return false;
     const auto t0 = Clock::now();

@@ -24,10 +24,14 @@ struct FrameLoopHooks {
   std::function<void(const FrameProgress&)> onProgress;  ///< after each frame
   const std::atomic<bool>* stop = nullptr;  ///< checked between frames; true = stop early
   std::int64_t recordUpTo = -1;             ///< observers see frames <= this (-1: all)
+  /// Hand a simulation at frame 0 to the observers before stepping (false when it was
+  /// restored from a frame the observers already had).
+  bool emitInitial = true;
 };
 
 /// Runs `sim` until frame `lastFrame`. Observers get the current frame first when it
-/// is frame 0 (the initial state), then every completed frame. Returns false if
+/// is frame 0 (the initial state; unless hooks.emitInitial is false), then every
+/// completed frame. Returns false if
 /// stopped early through hooks.stop (the last frame handed out is complete).
 bool runFrames(Simulation& sim, std::int64_t lastFrame, std::span<FrameObserver* const> observers,
                const FrameLoopHooks& hooks = {});

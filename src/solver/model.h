@@ -58,6 +58,16 @@ struct Model {
   /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
   /// often (docs/architecture.md, "The pair list").
   double pairListSkin = 0.1;
+  /// The blow-up check after every substep (docs/architecture.md, "Blow-up checks"): a
+  /// particle or body whose speed would carry it further than this many longest
+  /// interaction distances in one substep stops the run with BlowUpError, as does any
+  /// non-finite position or velocity. 0 turns the speed part off.
+  double maxTravelPerSubstep = 10;
+  /// Adaptive substeps (`run --adaptive`): each frame's substep count is chosen from the
+  /// state at its start (Simulation::chooseSubsteps), between `substeps` and
+  /// `maxSubsteps`.
+  bool adaptiveSubsteps = false;
+  int maxSubsteps = 10000;
 
   /// Seconds per substep.
   [[nodiscard]] double dt() const { return 1.0 / (framesPerSecond * substeps); }

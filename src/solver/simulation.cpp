@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <limits>
+
+#include <fmt/format.h>
 
 #include "core/error.h"
 #include "fluid/pair_forces.h"
+#include "solver/stability.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -64,6 +67,18 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
   }
   cellSize_ = static_cast<float>(c > 0 ? c : 1.0);
   skin_ = static_cast<float>(model_.pairListSkin) * cellSize_;
+  // Speeds are measured in interaction distances: a material's own cutoff (or contact
+  // reach for bodies), the longest one for a material that interacts with nothing.
+  reach_.resize(nm);
+  for (std::size_t a = 0; a < nm; ++a) {
+    float r = rowRadius_.empty() ? std::sqrt(model_.table.rowCutoff2(a)) : rowRadius_[a];
+    reach_[a] = r > 0 && std::isfinite(r) ? r : cellSize_;
+  }
+  substeps_ = std::max(1, model_.substeps);
+  if (model_.adaptiveSubsteps) {
+    const int stable = assessStability(model_, &state_).minimumSubsteps;
+    stableSubsteps_ = stable > 0 ? stable : model_.maxSubsteps;
+  }
 }
 
 double Simulation::time() const {
@@ -228,7 +243,7 @@ void Simulation::applyWalls() {
 // impulses: Verlet has no explicit velocity for impulses to change, seed 2.3.4), after
 // the fluid has moved, with the forces of the last evaluation (docs/architecture.md).
 void Simulation::step() {
-  const float dt = static_cast<float>(model_.dt());
+  const float dt = static_cast<float>(this->dt());
   switch (model_.integrator) {
     case Integrator::ExplicitEuler:
     case Integrator::SymplecticEuler:
@@ -241,7 +256,7 @@ void Simulation::step() {
         drift(dt);  // with v_{n+1}
       }
       applyWalls();
-      stepBodies(model_.dt());
+      stepBodies(this->dt());
       state_.forcesValid = false;
       break;
     case Integrator::VelocityVerlet:
@@ -249,21 +264,126 @@ void Simulation::step() {
       kick(0.5f * dt);
       drift(dt);
       applyWalls();
-      stepBodies(model_.dt());
+      stepBodies(this->dt());
       computeForces();
       kick(0.5f * dt);
       break;
   }
+  ++substepInFrame_;
+  checkFinite();
 }
 
 void Simulation::advanceFrame() {
-  for (int k = 0; k < model_.substeps; ++k) step();
+  if (substepInFrame_ == 0 && model_.adaptiveSubsteps) substeps_ = chooseSubsteps();
+  while (substepInFrame_ < substeps_) step();
   finishFrame();
 }
 
 void Simulation::finishFrame() {
   ++state_.frame;
+  substepInFrame_ = 0;
   checkFinite();
+}
+
+Simulation::Extremes Simulation::scanParticles(bool withForces) const {
+  const ParticleStore& s = state_.particles;
+  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
+              gz = static_cast<float>(model_.gravity.z());
+  const MaterialInfo* mats = model_.materials.data();
+  const float* reach = reach_.data();
+  auto join = [](Extremes a, const Extremes& b) {
+    a.speed = std::max(a.speed, b.speed);
+    a.acceleration = std::max(a.acceleration, b.acceleration);
+    a.finite = a.finite && b.finite;
+    return a;
+  };
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, s.size(), kBlock), Extremes{},
+      [&](const tbb::blocked_range<std::size_t>& r, Extremes e) {
+        float speed2 = 0, accel2 = 0;  // in reach units
+        bool finite = true;
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const float inv = 1.0f / reach[s.material[i]];
+          // x - x is 0 for a finite x and NaN otherwise.
+          finite = finite && (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
+          const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
+          finite = finite && v2 - v2 == 0.0f;
+          speed2 = std::max(speed2, v2);
+          if (withForces) {
+            const float im = mats[s.material[i]].inverseMass;
+            const float ax = s.fx[i] * im + gx, ay = s.fy[i] * im + gy, az = s.fz[i] * im + gz;
+            const float a2 = (ax * ax + ay * ay + az * az) * inv * inv;
+            if (a2 - a2 == 0.0f) accel2 = std::max(accel2, a2);  // unknown forces do not count
+          }
+        }
+        return join(e, Extremes{std::sqrt(speed2), std::sqrt(accel2), finite});
+      },
+      join);
+}
+
+int Simulation::chooseSubsteps() const {
+  const double fps = model_.framesPerSecond;
+  double n = std::max({1, model_.substeps, stableSubsteps_});
+  const Extremes e = scanParticles(state_.forcesValid);
+  if (e.finite) {
+    // v T / n <= kAdaptiveTravel reach, and (a / 2) (T / n)^2 <= kAdaptiveTravel reach.
+    n = std::max(n, std::ceil(e.speed / (fps * kAdaptiveTravel)));
+    n = std::max(n, std::ceil(std::sqrt(0.5 * e.acceleration / kAdaptiveTravel) / fps));
+  }
+  return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(std::max(1, model_.maxSubsteps))));
+}
+
+double Simulation::travelPerSubstep() const {
+  const Extremes e = scanParticles(false);
+  return e.finite ? e.speed * dt() : std::numeric_limits<double>::infinity();
+}
+
+Simulation::ListReference Simulation::listReference() const {
+  if (!listValid_) return {};
+  return {refX_, refY_, refZ_};
+}
+
+void Simulation::restore(State state, std::vector<float> refX, std::vector<float> refY, std::vector<float> refZ) {
+  const std::size_t n = state.particles.size();
+  if (n != model_.particleCount() || state.bodies.size() != model_.bodies.bodies.size())
+    throw std::invalid_argument("the checkpoint does not fit the scene: particle or object counts differ");
+  for (const std::uint16_t m : state.particles.material)
+    if (m >= model_.materials.size()) throw std::invalid_argument("the checkpoint names an unknown material");
+  const std::size_t entities = model_.fluids.size() + model_.bodies.bodies.size();
+  for (const std::uint32_t o : state.particles.owner)
+    if (o >= entities) throw std::invalid_argument("the checkpoint names an unknown fluid or object");
+  if (!refX.empty() && (refX.size() != n || refY.size() != n || refZ.size() != n))
+    throw std::invalid_argument("the checkpoint's list reference has the wrong size");
+  state_ = std::move(state);
+  substepInFrame_ = 0;
+  substeps_ = std::max(1, model_.substeps);
+  listValid_ = false;
+  if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
+  if (refX.empty()) return;
+  // Rebuild the grid and list from the positions they were built from: the store is
+  // still in the order that build sorted it into, so the grid finds it sorted and the
+  // list comes out exactly as before.
+  ParticleStore& s = state_.particles;
+  s.px.swap(refX);
+  s.py.swap(refY);
+  s.pz.swap(refZ);
+  grid_.rebuild(s, cellSize_ + skin_);
+  const bool reordered = grid_.reordered();
+  if (!reordered) {
+    list_.build(grid_, model_.table, s, skin_, listOptions_);
+    if (!model_.bodies.empty()) listRigidPairs();
+  }
+  s.px.swap(refX);
+  s.py.swap(refY);
+  s.pz.swap(refZ);
+  if (reordered) {
+    // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
+    throw std::invalid_argument("the checkpoint's particle order does not match its list reference");
+  }
+  refX_ = std::move(refX);
+  refY_ = std::move(refY);
+  refZ_ = std::move(refZ);
+  listValid_ = true;
 }
 
 std::string Simulation::entityName(std::uint32_t owner) const {
@@ -272,32 +392,68 @@ std::string Simulation::entityName(std::uint32_t owner) const {
 }
 
 void Simulation::checkFinite() const {
+  bool ok = true;
+  const double limit = model_.maxTravelPerSubstep * model_.framesPerSecond * substeps_;  // reach per second
+  for (const rigid::BodyState& st : state_.bodies)
+    ok = ok && st.position.allFinite() && st.velocity.allFinite() && st.angularMomentum.allFinite() &&
+         st.orientation.coeffs().allFinite();
+  if (ok) {
+    const Extremes e = scanParticles(false);
+    ok = e.finite && !(limit > 0 && e.speed > limit);
+  }
+  if (!ok) reportBlowUp();
+}
+
+// Only on the way out: a serial scan that names the body, or the particle with the
+// lowest id, that failed the check.
+void Simulation::reportBlowUp() const {
+  const std::string when =
+      substepInFrame_ > 0
+          ? fmt::format("frame {}, substep {} of {}", state_.frame + 1, substepInFrame_, substeps_)
+          : fmt::format("frame {}", state_.frame);
   for (std::size_t b = 0; b < state_.bodies.size(); ++b) {
     const rigid::BodyState& st = state_.bodies[b];
-    if (st.position.allFinite() && st.velocity.allFinite() && st.angularMomentum.allFinite() &&
-        st.orientation.coeffs().allFinite())
-      continue;
-    std::ostringstream msg;
-    msg << "simulation blew up at frame " << state_.frame << ": object '" << model_.bodies.bodies[b].name
-        << "': its position, velocity or rotation is not finite (forces too stiff for the time step: "
-           "raise Substeps, lower the FluidObject function or check Mass)";
-    throw BlowUpError(msg.str());
+    const char* what = !st.position.allFinite()            ? "position"
+                       : !st.velocity.allFinite()          ? "velocity"
+                       : !st.angularMomentum.allFinite()   ? "angular momentum"
+                       : !st.orientation.coeffs().allFinite() ? "rotation"
+                                                              : nullptr;
+    if (what == nullptr) continue;
+    throw BlowUpError(fmt::format(
+        "simulation blew up at {}: object '{}': its {} is not finite (forces too stiff for the time step: "
+        "raise Substeps or use --adaptive, lower the FluidObject function or check Mass)",
+        when, model_.bodies.bodies[b].name, what));
   }
   const ParticleStore& s = state_.particles;
+  const double limit = model_.maxTravelPerSubstep * model_.framesPerSecond * substeps_;
+  static const char* names[6] = {"position x", "position y", "position z", "velocity x", "velocity y", "velocity z"};
   const std::vector<float>* arrays[6] = {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz};
-  static const char* names[6] = {"position x", "position y", "position z",
-                                 "velocity x", "velocity y", "velocity z"};
-  for (int a = 0; a < 6; ++a) {
-    const std::vector<float>& v = *arrays[a];
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (std::isfinite(v[i])) continue;
-      std::ostringstream msg;
-      msg << "simulation blew up at frame " << state_.frame << ": " << entityName(s.owner[i])
-          << ", particle id " << s.id[i] << ": " << names[a] << " is " << v[i]
-          << " (forces too stiff for the time step: raise Substeps, lower MaximumForce or Viscosity)";
-      throw BlowUpError(msg.str());
+  std::size_t worst = s.size();
+  std::string problem;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (worst < s.size() && s.id[i] > s.id[worst]) continue;
+    std::string p;
+    for (int a = 0; a < 6 && p.empty(); ++a)
+      if (!std::isfinite((*arrays[a])[i])) p = fmt::format("{} is {}", names[a], (*arrays[a])[i]);
+    if (p.empty() && limit > 0) {
+      // The check's own arithmetic (scanParticles), so the particle it flagged is found.
+      const float inv = 1.0f / reach_[s.material[i]];
+      const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
+      if (std::sqrt(v2) > limit)
+        p = fmt::format("speed is {:.6g} units/s, beyond the limit of {:.6g} units/s ({} interaction distances of "
+                        "{:.6g} per substep)",
+                        std::sqrt(v2) * reach_[s.material[i]], limit * reach_[s.material[i]],
+                        model_.maxTravelPerSubstep, reach_[s.material[i]]);
     }
+    if (p.empty()) continue;
+    worst = i;
+    problem = std::move(p);
   }
+  if (worst == s.size()) throw BlowUpError(fmt::format("simulation blew up at {}", when));
+  throw BlowUpError(fmt::format(
+      "simulation blew up at {}: {}, particle id {}: {} (forces too stiff for the time step: raise Substeps or "
+      "use --adaptive, lower MaximumForce or Viscosity)",
+      when, entityName(s.owner[worst]), s.id[worst], problem));
 }
 
 void Simulation::snapshot(FrameSnapshot& out) const {

@@ -1,6 +1,7 @@
 #pragma once
 /// The stepper: the seed's stages, in order, on (Model, State).
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,20 +13,56 @@
 
 namespace softsub::solver {
 
+/// Adaptive substeps keep every particle's move per substep within this fraction of its
+/// interaction distance (docs/architecture.md, "Adaptive substeps").
+inline constexpr double kAdaptiveTravel = 0.25;
+
 /// Owns a State and the work buffers for stepping it under a Model. The Model must
 /// outlive the Simulation.
 class Simulation {
  public:
   Simulation(const Model& model, State state);
 
-  /// One substep of length model.dt() (docs/architecture.md, "The step").
+  /// One substep of length dt() (docs/architecture.md, "The step"), then the blow-up
+  /// check (checkSubstep). Throws BlowUpError naming the frame, the substep, the fluid
+  /// or object, the particle id, the quantity and its value.
   void step();
-  /// model.substeps substeps, then frame += 1. Throws BlowUpError (with frame, fluid,
-  /// particle id, quantity and value) if any position or velocity is not finite.
+  /// A whole frame: chooses its substep count (chooseSubsteps, when the model is
+  /// adaptive), steps them, then frame += 1. BlowUpError as step().
   void advanceFrame();
   /// Ends a frame stepped substep by substep with step() (the viewer's -drawPerFrame 0):
-  /// frame += 1, then the same finiteness check as advanceFrame.
+  /// frame += 1, then the same check as advanceFrame.
   void finishFrame();
+
+  /// Substeps of the current (or next) frame: model.substeps, or with
+  /// model.adaptiveSubsteps the count chosen at the frame's start.
+  [[nodiscard]] int substeps() const { return substeps_; }
+  /// Seconds per substep of the current frame.
+  [[nodiscard]] double dt() const { return 1.0 / (model_.framesPerSecond * substeps_); }
+  /// The substep count adaptive stepping would choose for the next frame, from the
+  /// current state (docs/architecture.md, "Adaptive substeps"): at least model.substeps
+  /// and the stability estimate's minimum, enough that no particle moves more than
+  /// kAdaptiveTravel of its interaction distance per substep at its current speed or
+  /// from rest under its current acceleration; at most model.maxSubsteps.
+  [[nodiscard]] int chooseSubsteps() const;
+  /// The largest distance a particle covers in one substep at its current speed, in its
+  /// interaction distances (what the blow-up check compares to model.maxTravelPerSubstep;
+  /// `run --stats` prints it). Infinity when a velocity is not finite.
+  [[nodiscard]] double travelPerSubstep() const;
+
+  /// The exact solver state beyond State that a checkpoint keeps so that a restored
+  /// simulation continues bit for bit: the positions at which the pair list was built,
+  /// in slot order (empty when no list is held).
+  struct ListReference {
+    std::span<const float> x, y, z;
+  };
+  [[nodiscard]] ListReference listReference() const;
+  /// Replaces the state with a checkpointed one and rebuilds the pair list exactly as it
+  /// was built (from `reference`, the ListReference saved with it; empty: rebuilt at the
+  /// next step, as after a fresh start). The store must be in the slot order it was
+  /// saved in. InputError-free: std::invalid_argument when the sizes do not fit the
+  /// model or the reference is not the one the order was sorted by.
+  void restore(State state, std::vector<float> refX, std::vector<float> refY, std::vector<float> refZ);
 
   /// The current frame as plain arrays in stable-id order (buffers reused).
   void snapshot(FrameSnapshot& out) const;
@@ -43,7 +80,8 @@ class Simulation {
   /// How many times the grid and pair list were rebuilt (diagnostics, benchmarks).
   [[nodiscard]] std::int64_t listBuilds() const { return listBuilds_; }
 
-  /// Throws BlowUpError naming the first non-finite position/velocity, if any.
+  /// Throws BlowUpError naming the first particle (lowest id) or body whose position or
+  /// velocity is not finite or whose speed is beyond model.maxTravelPerSubstep.
   void checkFinite() const;
 
   /// The rigid-body solver (contacts of the last substep, tests).
@@ -58,11 +96,26 @@ class Simulation {
   void stepBodies(double dt);
   void listRigidPairs();
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
+  [[noreturn]] void reportBlowUp() const;
+
+  /// Largest |v| / reach and |a| / reach over the particles (reach: the interaction
+  /// distance of the particle's material); `finite` false when any position, velocity
+  /// (or, with forces, force) is not finite. Exact maxima: the same for any split.
+  struct Extremes {
+    float speed = 0;         ///< max |v| / reach, 1/s
+    float acceleration = 0;  ///< max |f/m + g| / reach, 1/s^2
+    bool finite = true;
+  };
+  [[nodiscard]] Extremes scanParticles(bool withForces) const;
 
   const Model& model_;
   State state_;
   neighbors::CellGrid grid_;
   fluid::PairList list_;
+  int substeps_ = 1;       // of the current frame
+  int substepInFrame_ = 0; // substeps done in the current frame
+  int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
+  std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
   float cellSize_ = 1;  // longest cutoff
   float skin_ = 0;      // pair-list margin beyond the cutoff
   bool listValid_ = false;

@@ -38,7 +38,7 @@ TEST(ThreadsCli, AThreadCountOutOfRangeIsRefused) {
   }
 }
 
-// The rows of --stats: frame, time, kinetic, pair, gravity, bodies, total.
+// The rows of --stats: frame, time, kinetic, pair, gravity, bodies, total, substeps, travel.
 std::vector<std::vector<double>> statsRows(const std::string& out) {
   std::vector<std::vector<double>> rows;
   std::istringstream in(out);
@@ -57,11 +57,14 @@ TEST(ThreadsCli, StatsPrintsEveryFramesEnergiesThatAddUp) {
   const fs::path scene = copyInto(examplesDir() / "box-on-jelly.scene", tmp.path());
   const RunResult r = runSoftsub("run -q --frames 3 --formats none --stats " + quote(scene), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.rfind("# frame time kinetic pair gravity bodies total\n", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.rfind("# frame time kinetic pair gravity bodies total substeps travel\n", 0), 0u) << r.out;
   const auto rows = statsRows(r.out);
   ASSERT_EQ(rows.size(), 4u) << r.out;
   for (std::size_t f = 0; f < rows.size(); ++f) {
-    ASSERT_EQ(rows[f].size(), 7u);
+    ASSERT_EQ(rows[f].size(), 9u);
+    EXPECT_EQ(rows[f][7], 8.0) << "the scene's substeps";
+    EXPECT_GE(rows[f][8], 0.0);
+    EXPECT_LT(rows[f][8], 10.0) << "within the blow-up check's limit";
     EXPECT_EQ(rows[f][0], static_cast<double>(f));
     const double parts = rows[f][2] + rows[f][3] + rows[f][4] + rows[f][5];
     EXPECT_NEAR(rows[f][6], parts, 1e-6 * std::max(1.0, std::abs(parts)));

@@ -1,0 +1,136 @@
+#include "run_journal.h"
+
+#include <algorithm>
+#include <system_error>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "cache/atomic_file.h"
+#include "cache/manifest.h"
+#include "core/error.h"
+#include "solver/checkpoint.h"
+
+namespace softsub::app {
+
+namespace {
+
+/// Keeps this many newest checkpoints: the newest may belong to a frame whose manifest a
+/// kill prevented, so the one before it is kept too.
+constexpr std::size_t kCheckpointsKept = 2;
+
+void removeQuietly(const std::filesystem::path& p) {
+  std::error_code ec;
+  std::filesystem::remove(p, ec);
+}
+
+}  // namespace
+
+RunJournal::RunJournal(std::filesystem::path outDir, std::string sceneName, std::uint64_t fingerprint,
+                       int checkpointEvery, std::int64_t lastFrame, const solver::Simulation& sim,
+                       std::vector<WrittenFiles> writers)
+    : dir_(std::move(outDir)),
+      scene_(std::move(sceneName)),
+      fingerprint_(fingerprint),
+      every_(checkpointEvery),
+      lastFrame_(lastFrame),
+      sim_(sim),
+      writers_(std::move(writers)) {
+  checkpoints_ = cache::checkpointFrames(dir_, scene_);
+}
+
+void RunJournal::onFrame(const FrameSnapshot& frame) {
+  cache::Manifest m;
+  m.frame = frame.frame;
+  m.substeps = sim_.substeps();
+  m.fingerprint = fingerprint_;
+  for (const WrittenFiles& w : writers_)
+    for (const std::filesystem::path& p : w()) m.files.push_back(cache::entryOf(dir_, p));
+  const bool due = every_ > 0 && (frame.frame % every_ == 0 || frame.frame == lastFrame_);
+  if (due) {
+    if (sim_.state().frame != frame.frame)
+      throw std::logic_error("RunJournal: the simulation is not at the observed frame");
+    solver::encodeCheckpoint(sim_, fingerprint_, buffer_);
+    const std::filesystem::path path = cache::checkpointPath(dir_, scene_, frame.frame);
+    cache::ensureDirectory(path.parent_path());
+    cache::writeFileAtomic(path, buffer_);
+    m.checkpoint = cache::ManifestEntry{path.lexically_relative(dir_).generic_string(), buffer_.size()};
+  }
+  const std::filesystem::path manifest = cache::manifestPath(dir_, scene_, frame.frame);
+  cache::ensureDirectory(manifest.parent_path());
+  // Last: the frame is complete from here on.
+  cache::writeFileAtomic(manifest, cache::encodeManifest(m));
+  if (!due) return;
+  // Older checkpoints go only once a newer frame is complete.
+  checkpoints_.erase(std::remove(checkpoints_.begin(), checkpoints_.end(), frame.frame), checkpoints_.end());
+  checkpoints_.push_back(frame.frame);
+  std::sort(checkpoints_.begin(), checkpoints_.end());
+  while (checkpoints_.size() > kCheckpointsKept) {
+    removeQuietly(cache::checkpointPath(dir_, scene_, checkpoints_.front()));
+    checkpoints_.erase(checkpoints_.begin());
+  }
+}
+
+ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& sceneName, std::uint64_t fingerprint,
+                       solver::Simulation& sim) {
+  ResumePoint point;
+  const std::vector<std::int64_t> frames = cache::manifestFrames(outDir, sceneName);
+  if (frames.empty()) {
+    point.note = fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string());
+    return point;
+  }
+  // The settings of the run in the folder: its newest readable manifest says.
+  std::vector<cache::Manifest> manifests;
+  for (const std::int64_t f : frames) {
+    const std::filesystem::path path = cache::manifestPath(outDir, sceneName, f);
+    try {
+      manifests.push_back(cache::decodeManifest(cache::readFileBytes(path), path.string()));
+    } catch (const InputError&) {
+      break;  // a damaged manifest ends the complete run of frames
+    } catch (const IoError&) {
+      break;
+    }
+  }
+  if (!manifests.empty() && manifests.back().fingerprint != fingerprint)
+    throw InputError({outDir.string(), 0, "--resume"},
+                     fmt::format("the folder holds frames 0..{} of '{}' made with other settings (the scene, an "
+                                 "option or the softsub version changed)",
+                                 manifests.back().frame, sceneName),
+                     "the same scene and options as the run being resumed, or run without --resume to start over");
+  // The complete frames: 0, 1, 2, ... each with its manifest and every listed file.
+  std::size_t complete = 0;
+  while (complete < manifests.size() && manifests[complete].frame == static_cast<std::int64_t>(complete) &&
+         cache::incompleteReason(outDir, manifests[complete], false).empty())
+    ++complete;
+  point.completeUpTo = static_cast<std::int64_t>(complete) - 1;
+  // The newest complete frame whose checkpoint restores.
+  for (std::size_t k = complete; k-- > 0;) {
+    const cache::Manifest& m = manifests[k];
+    if (!m.checkpoint || !cache::incompleteReason(outDir, m, true).empty()) continue;
+    const std::filesystem::path path = outDir / m.checkpoint->path;
+    try {
+      const std::string bytes = cache::readFileBytes(path);
+      if (solver::checkpointInfo(bytes, path.string()).frame != m.frame) continue;
+      solver::restoreCheckpoint(sim, bytes, fingerprint, path.string());
+      point.frame = m.frame;
+      return point;
+    } catch (const InputError& e) {
+      point.note = e.what();
+    } catch (const IoError& e) {
+      point.note = e.what();
+    }
+  }
+  if (point.note.empty())
+    point.note = complete == 0 ? fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string())
+                               : "no complete frame has a checkpoint";
+  return point;
+}
+
+void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName) {
+  for (const std::int64_t f : cache::manifestFrames(outDir, sceneName))
+    removeQuietly(cache::manifestPath(outDir, sceneName, f));
+  for (const std::int64_t f : cache::checkpointFrames(outDir, sceneName))
+    removeQuietly(cache::checkpointPath(outDir, sceneName, f));
+}
+
+}  // namespace softsub::app

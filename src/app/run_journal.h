@@ -1,0 +1,61 @@
+#pragma once
+/// What makes `softsub run` lose no frame and resume exactly: after each frame's cache
+/// files, a checkpoint (every K frames) and then the frame's manifest, written last
+/// (cache/manifest.h); at the start, stale temporaries removed and, with --resume, the
+/// last complete checkpointed frame found and restored. docs/cli.md, "Resuming a run".
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/snapshot.h"
+#include "solver/simulation.h"
+
+namespace softsub::app {
+
+/// The files one frame's writers produced, for its manifest.
+using WrittenFiles = std::function<std::vector<std::filesystem::path>()>;
+
+/// The FrameObserver that runs after every cache writer: writes the frame's checkpoint
+/// (when due) and then its manifest, and keeps only the two newest checkpoints.
+class RunJournal : public FrameObserver {
+ public:
+  /// `lastFrame` always gets a checkpoint, so a finished run can be extended.
+  RunJournal(std::filesystem::path outDir, std::string sceneName, std::uint64_t fingerprint, int checkpointEvery,
+             std::int64_t lastFrame, const solver::Simulation& sim, std::vector<WrittenFiles> writers);
+
+  void onFrame(const FrameSnapshot& frame) override;
+
+ private:
+  std::filesystem::path dir_;
+  std::string scene_;
+  std::uint64_t fingerprint_;
+  int every_;
+  std::int64_t lastFrame_;
+  const solver::Simulation& sim_;
+  std::vector<WrittenFiles> writers_;
+  std::string buffer_;
+  std::vector<std::int64_t> checkpoints_;  ///< frames whose checkpoint this run wrote or kept
+};
+
+/// Where a resumed run starts.
+struct ResumePoint {
+  std::int64_t frame = -1;         ///< the restored frame (-1: nothing to resume, start at 0)
+  std::int64_t completeUpTo = -1;  ///< the last frame with a complete manifest
+  std::string note;                ///< why nothing (or less than expected) could be resumed
+};
+
+/// Finds the newest frame of `sceneName` in `outDir` that is complete (its manifest and
+/// every earlier frame's are whole) and has an intact checkpoint of a run with
+/// `fingerprint`, and restores `sim` to it. InputError when the folder holds a run with
+/// other settings (nothing is changed then).
+[[nodiscard]] ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& sceneName,
+                                     std::uint64_t fingerprint, solver::Simulation& sim);
+
+/// Before a fresh (not resumed) run writes anything: removes the folder's manifests and
+/// checkpoints of `sceneName`, which describe an earlier run.
+void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName);
+
+}  // namespace softsub::app
