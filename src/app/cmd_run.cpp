@@ -115,15 +115,15 @@ bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.me
 std::uint64_t runFingerprint(const RunOptions& o, scene::SceneDesc desc, const cache::Formats& formats,
                              const solver::Model& model, const solver::State& initial) {
   desc.simulation.frames = 1;
-  std::uint64_t h = solver::hashBytes(scene::writeSceneText(desc));
+  std::uint64_t h = hashBytes(scene::writeSceneText(desc));
   const ParticleStore& s = initial.particles;
   for (const std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz})
-    h = solver::hashBytes({reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float)}, h);
+    h = hashBytes({reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float)}, h);
   const std::string options = fmt::format(
       "softsub {}|formats {}|voxel {:.17g}|blob {:.17g}|adaptive {} {}|speed-limit {:.17g}|record-up-to {}",
       SOFTSUB_VERSION, cache::formatsToString(formats), o.surface.voxelSize, o.surface.radiusScale,
       model.adaptiveSubsteps, model.maxSubsteps, model.maxTravelPerSubstep, o.stopRecordingAt);
-  return solver::hashBytes(options, h);
+  return hashBytes(options, h);
 }
 
 std::string folderText(const std::filesystem::path& dir) {
@@ -154,7 +154,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                 "outputs are byte-identical to an uninterrupted run. Starts at frame 0 when there is nothing to "
                 "resume");
   run->add_option("--checkpoint-every", o.checkpointEvery,
-                  "Write the solver state every K frames (and at the last) for --resume; 0: never")
+                  "Write the solver state every K frames for --resume (the two newest are kept); 0: never")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   run->add_flag("--adaptive", o.adaptive,
@@ -269,7 +269,7 @@ int runCommand(const RunOptions& o) {
   // The manifest after every file of the frame: it marks the frame complete.
   std::optional<RunJournal> journal;
   if (anyFormat(formats))
-    observers.push_back(&journal.emplace(outDir, loaded.name, fingerprint, o.checkpointEvery, lastFrame, sim,
+    observers.push_back(&journal.emplace(outDir, loaded.name, fingerprint, o.checkpointEvery, sim,
                                          std::move(written)));
   observers.push_back(&done);
   std::optional<StatsObserver> stats;

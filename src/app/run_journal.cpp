@@ -27,13 +27,12 @@ void removeQuietly(const std::filesystem::path& p) {
 }  // namespace
 
 RunJournal::RunJournal(std::filesystem::path outDir, std::string sceneName, std::uint64_t fingerprint,
-                       int checkpointEvery, std::int64_t lastFrame, const solver::Simulation& sim,
+                       int checkpointEvery, const solver::Simulation& sim,
                        std::vector<WrittenFiles> writers)
     : dir_(std::move(outDir)),
       scene_(std::move(sceneName)),
       fingerprint_(fingerprint),
       every_(checkpointEvery),
-      lastFrame_(lastFrame),
       sim_(sim),
       writers_(std::move(writers)) {
   checkpoints_ = cache::checkpointFrames(dir_, scene_);
@@ -46,7 +45,7 @@ void RunJournal::onFrame(const FrameSnapshot& frame) {
   m.fingerprint = fingerprint_;
   for (const WrittenFiles& w : writers_)
     for (const std::filesystem::path& p : w()) m.files.push_back(cache::entryOf(dir_, p));
-  const bool due = every_ > 0 && (frame.frame % every_ == 0 || frame.frame == lastFrame_);
+  const bool due = every_ > 0 && frame.frame % every_ == 0;
   if (due) {
     if (sim_.state().frame != frame.frame)
       throw std::logic_error("RunJournal: the simulation is not at the observed frame");

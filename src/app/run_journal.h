@@ -22,9 +22,9 @@ using WrittenFiles = std::function<std::vector<std::filesystem::path>()>;
 /// (when due) and then its manifest, and keeps only the two newest checkpoints.
 class RunJournal : public FrameObserver {
  public:
-  /// `lastFrame` always gets a checkpoint, so a finished run can be extended.
+  /// Checkpoints frames 0, K, 2K, ... (K = checkpointEvery; 0: none).
   RunJournal(std::filesystem::path outDir, std::string sceneName, std::uint64_t fingerprint, int checkpointEvery,
-             std::int64_t lastFrame, const solver::Simulation& sim, std::vector<WrittenFiles> writers);
+             const solver::Simulation& sim, std::vector<WrittenFiles> writers);
 
   void onFrame(const FrameSnapshot& frame) override;
 
@@ -33,7 +33,6 @@ class RunJournal : public FrameObserver {
   std::string scene_;
   std::uint64_t fingerprint_;
   int every_;
-  std::int64_t lastFrame_;
   const solver::Simulation& sim_;
   std::vector<WrittenFiles> writers_;
   std::string buffer_;

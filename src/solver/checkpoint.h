@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/hash.h"
 #include "solver/simulation.h"
 
 namespace softsub::solver {
@@ -33,9 +34,5 @@ void encodeCheckpoint(const Simulation& sim, std::uint64_t fingerprint, std::str
 /// Restores `sim` (built from the same Model) from `bytes`. InputError when the bytes are
 /// damaged, their fingerprint is not `fingerprint`, or they do not fit the model.
 void restoreCheckpoint(Simulation& sim, std::string_view bytes, std::uint64_t fingerprint, const std::string& file);
-
-/// A 64-bit hash of bytes (FNV-1a over 8-byte words, then mixed): checkpoints' checksums
-/// and the runs' fingerprints. Not cryptographic.
-[[nodiscard]] std::uint64_t hashBytes(std::string_view bytes, std::uint64_t seed = 0);
 
 }  // namespace softsub::solver

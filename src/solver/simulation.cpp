@@ -306,8 +306,9 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
           const float inv = 1.0f / reach[s.material[i]];
           // x - x is 0 for a finite x and NaN otherwise.
           finite = finite && (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
+          finite = finite && (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
+          // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
           const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
-          finite = finite && v2 - v2 == 0.0f;
           speed2 = std::max(speed2, v2);
           if (withForces) {
             const float im = mats[s.material[i]].inverseMass;

@@ -11,13 +11,19 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <cmath>
 #include <functional>
 #include <mutex>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
+#include "cache/atomic_file.h"
 #include "core/error.h"
+#include "core/hash.h"
 #include "surface/surface.h"
 
 namespace softsub::surface {
@@ -476,6 +482,37 @@ SurfaceMesh LevelSet::mesh() const {
   return out;
 }
 
+namespace {
+
+/// OpenVDB stamps every file with a random UUID, so the same grid written twice gives
+/// two different files. For outputs that must be byte-identical across runs (a resumed
+/// run's, docs/cache-formats.md), the UUID is replaced by one derived from the file's
+/// other bytes: the same content, the same id. The header is magic (8 bytes), file
+/// version, library major and minor (4 each), a grid-offsets flag (1), then the UUID as
+/// 36 characters; anything else is left alone.
+void makeFileIdFromContent(const std::filesystem::path& file) {
+  constexpr std::size_t kUuidAt = 21, kUuidSize = 36;
+  std::string bytes = cache::readFileBytes(file);
+  if (bytes.size() < kUuidAt + kUuidSize) return;
+  for (const std::size_t dash : {8u, 13u, 18u, 23u})
+    if (bytes[kUuidAt + dash] != '-') return;
+  std::string rest = bytes;
+  rest.erase(kUuidAt, kUuidSize);
+  const std::uint64_t a = hashBytes(rest), b = hashBytes(rest, a);
+  // Version 8 (custom) and the RFC 4122 variant, so readers see a well-formed UUID.
+  const std::string id = fmt::format("{:08x}-{:04x}-8{:03x}-{:04x}-{:012x}", a >> 32, (a >> 16) & 0xffff,
+                                     a & 0xfff, 0x8000 | ((b >> 48) & 0x3fff), b & 0xffffffffffffULL);
+  bytes.replace(kUuidAt, kUuidSize, id);
+  std::FILE* f = std::fopen(file.c_str(), "r+b");
+  if (f == nullptr) throw IoError("cannot write " + file.string() + ": " + std::strerror(errno));
+  const bool ok = std::fseek(f, static_cast<long>(kUuidAt), SEEK_SET) == 0 &&
+                  std::fwrite(id.data(), 1, id.size(), f) == id.size();
+  const int err = errno;
+  if (std::fclose(f) != 0 || !ok) throw IoError("cannot write " + file.string() + ": " + std::strerror(err));
+}
+
+}  // namespace
+
 void LevelSet::writeVdb(const std::filesystem::path& file, const std::string& gridName) const {
   initOpenVdb();
   openvdb::FloatGrid::Ptr grid;
@@ -492,6 +529,7 @@ void LevelSet::writeVdb(const std::filesystem::path& file, const std::string& gr
   } catch (const openvdb::Exception& e) {
     throw IoError("cannot write " + file.string() + ": " + e.what());
   }
+  makeFileIdFromContent(file);
 }
 
 double LevelSet::sample(double x, double y, double z) const {

@@ -1,6 +1,8 @@
 #include "app_test_util.h"
 
+#include <fcntl.h>
 #include <poll.h>
+#include <spawn.h>
 #include <pty.h>
 #include <sys/wait.h>
 
@@ -21,6 +23,8 @@
 #include "scene/compile.h"
 #include "scene/reader.h"
 
+extern char** environ;
+
 namespace softsub::apptest {
 
 std::string quote(const fs::path& p) {
@@ -37,6 +41,23 @@ RunResult runSoftsub(const std::string& args, const fs::path& cwd) {
 }
 
 fs::path softsubBinary() { return SOFTSUB_BINARY; }
+
+int spawnSoftsub(const std::vector<std::string>& args, const fs::path& errFile) {
+  std::vector<std::string> all{SOFTSUB_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
+}
 
 std::string findProgram(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -136,6 +157,12 @@ std::vector<std::string> listFiles(const fs::path& dir) {
     if (e.is_regular_file()) out.push_back(fs::relative(e.path(), dir).generic_string());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::vector<std::string> listFrameFiles(const fs::path& dir) {
+  std::vector<std::string> files = listFiles(dir);
+  std::erase_if(files, [](const std::string& f) { return f.starts_with("manifest/") || f.starts_with("checkpoint/"); });
+  return files;
 }
 
 std::vector<std::string> listEntries(const fs::path& dir) {

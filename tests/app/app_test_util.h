@@ -31,6 +31,10 @@ RunResult runSoftsubInTerminal(const std::string& args, const fs::path& cwd);
 /// (xvfb-run) or for other tools.
 RunResult runCommand(const std::string& commandLine, const fs::path& cwd);
 
+/// Starts softsub with `args` in the background (stdin and stdout /dev/null, stderr to
+/// `errFile`); returns its pid (-1 if it could not be started). The caller waits for it.
+int spawnSoftsub(const std::vector<std::string>& args, const fs::path& errFile);
+
 /// The full path of `program` found on PATH (an executable file), or empty.
 std::string findProgram(const std::string& program);
 
@@ -61,6 +65,10 @@ std::string readFile(const fs::path& p);
 
 /// Every regular file under `dir`, as paths relative to it, sorted.
 std::vector<std::string> listFiles(const fs::path& dir);
+
+/// listFiles without the run's journal: its manifest/ and checkpoint/ folders (the
+/// frames' cache files only).
+std::vector<std::string> listFrameFiles(const fs::path& dir);
 
 /// Every entry (files and folders) directly inside `dir`, by name, sorted.
 std::vector<std::string> listEntries(const fs::path& dir);

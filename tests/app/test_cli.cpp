@@ -129,7 +129,7 @@ TEST(Cli, OverridesAtTheEndsOfTheirRangesAreAccepted) {
   const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
   const RunResult r = runSoftsub("run --frames=0 --substeps=1 --formats sim " + quote(scene), tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), std::vector<std::string>{"two-fluids.0000.sim"});
+  EXPECT_EQ(listFrameFiles(tmp / "two-fluidsSim"), std::vector<std::string>{"two-fluids.0000.sim"});
 }
 
 TEST(Cli, MissingSceneFileIsAnIoError) {

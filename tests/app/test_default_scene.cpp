@@ -39,7 +39,7 @@ TEST(DefaultScene, RunWithoutSceneWritesSoftsubDemoSimInTheWorkingFolder) {
   TempDir tmp;
   const RunResult r = runSoftsub("run -q --frames 1 --formats sim", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "softsub-demoSim"),
+  EXPECT_EQ(listFrameFiles(tmp / "softsub-demoSim"),
             (std::vector<std::string>{"softsub-demo.0000.sim", "softsub-demo.0001.sim"}));
   const cache::SimFile sim = cache::readSimFile(tmp / "softsub-demoSim" / "softsub-demo.0001.sim");
   ASSERT_EQ(sim.frame.fluids.size(), 2u);

@@ -27,7 +27,7 @@ TEST(MeshFillCli, SceneFillingAMeshRunsFromAnyFolder) {
   // Run from the parent folder: the mesh resolves against the scene's folder, not the cwd.
   const RunResult r = runSoftsub("run shot/t.scene --frames 2 --formats sim", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::vector<std::string> files = listFiles(tmp / "shot/tSim");
+  const std::vector<std::string> files = listFrameFiles(tmp / "shot/tSim");
   EXPECT_EQ(files.size(), 3u) << ::testing::PrintToString(files);  // frames 0, 1, 2
   const RunResult info = runSoftsub("info shot/t.scene", tmp.path());
   ASSERT_EQ(info.code, 0) << info.err;
@@ -36,13 +36,13 @@ TEST(MeshFillCli, SceneFillingAMeshRunsFromAnyFolder) {
 
 // Exit 2, the message at the <Geometry> line, and nothing written next to the scene.
 void expectRefused(const TempDir& tmp, const std::string& problem) {
-  const std::vector<std::string> before = listFiles(tmp.path());
+  const std::vector<std::string> before = listFrameFiles(tmp.path());
   const RunResult r = runSoftsub("run t.scene --frames 2", tmp.path());
   EXPECT_EQ(r.code, 2) << r.err;
   const std::string head = "error: t.scene:7: Fluid 'goo'/Fill[1]/Geometry: ";
   EXPECT_EQ(r.err.rfind(head, 0), 0u) << r.err;
   EXPECT_NE(r.err.find(problem), std::string::npos) << r.err;
-  EXPECT_EQ(listFiles(tmp.path()), before);
+  EXPECT_EQ(listFrameFiles(tmp.path()), before);
   EXPECT_FALSE(fs::exists(tmp / "tSim"));
 }
 

@@ -79,7 +79,7 @@ TEST_P(RenderScene, FramesArePicturesOfEachFluidWhereItsParticlesProject) {
   const RunResult r = render(scene, out, "--frames 0:2", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "") << "-q prints nothing but errors";
-  EXPECT_EQ(listFiles(out), pictureNames(stem, 0, 2));
+  EXPECT_EQ(listFrameFiles(out), pictureNames(stem, 0, 2));
   for (const std::string& name : pictureNames(stem, 0, 2)) {
     const render::Image im = readPng(out / name);
     EXPECT_EQ(im.width, kWidth) << name;
@@ -111,7 +111,7 @@ TEST(RenderCli, TheFloorIsGreyAtTheBottomOfThePicture) {
   const fs::path out = tmp / "pictures";
   const RunResult r = render(scene, out, "--frames 0", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  ASSERT_EQ(listFiles(out), pictureNames("honey-drop", 0, 0));
+  ASSERT_EQ(listFrameFiles(out), pictureNames("honey-drop", 0, 0));
   const render::Image im = readPng(out / "honey-drop.0000.png");
   const scene::SceneDesc desc = scene::readSceneFile(scene.string());
   ASSERT_TRUE(desc.environment);
@@ -166,8 +166,8 @@ TEST(RenderCli, ARecordedFolderIsDrawnLikeTheScene) {
   const RunResult b = render(recorded, fromFolder, "--frames 1:3", tmp.path());
   ASSERT_EQ(b.code, 0) << b.err;
   // Named after the scene in both cases.
-  EXPECT_EQ(listFiles(fromScene), pictureNames("two-fluids", 1, 3));
-  ASSERT_EQ(listFiles(fromFolder), pictureNames("two-fluids", 1, 3));
+  EXPECT_EQ(listFrameFiles(fromScene), pictureNames("two-fluids", 1, 3));
+  ASSERT_EQ(listFrameFiles(fromFolder), pictureNames("two-fluids", 1, 3));
   // The `.sim` text holds every float exactly (shortest round-trip digits), and the colours,
   // sizes, container and camera come from the scene beside the folder: the same frames
   // give the same pictures, pixel for pixel.
@@ -188,14 +188,14 @@ TEST(RenderCli, AFolderNamedWithATrailingSlashOrByOneOfItsFramesIsDrawnTheSame) 
   ASSERT_EQ(a.code, 0) << a.err;
   const RunResult b = render(recorded.string() + "/", tmp / "slash", "--frames 1", tmp.path());
   ASSERT_EQ(b.code, 0) << b.err;
-  ASSERT_EQ(listFiles(tmp / "slash"), pictureNames("two-fluids", 1, 1));
+  ASSERT_EQ(listFrameFiles(tmp / "slash"), pictureNames("two-fluids", 1, 1));
   EXPECT_EQ(differingPixels(readPng(tmp / "plain" / "two-fluids.0001.png"),
                             readPng(tmp / "slash" / "two-fluids.0001.png")),
             0u);
   // One .sim file of the recording plays its folder.
   const RunResult c = render(recorded / "two-fluids.0000.sim", tmp / "file", "--frames 1", tmp.path());
   ASSERT_EQ(c.code, 0) << c.err;
-  ASSERT_EQ(listFiles(tmp / "file"), pictureNames("two-fluids", 1, 1));
+  ASSERT_EQ(listFrameFiles(tmp / "file"), pictureNames("two-fluids", 1, 1));
   EXPECT_EQ(differingPixels(readPng(tmp / "plain" / "two-fluids.0001.png"),
                             readPng(tmp / "file" / "two-fluids.0001.png")),
             0u);
@@ -362,7 +362,7 @@ TEST(RenderCli, AMovieIsAnMp4OfThePictures) {
   const fs::path out = tmp / "pictures", movie = tmp / "two-fluids.mp4";
   const RunResult r = render(scene, out, "--frames 0:5 --movie " + quote(movie), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(out), pictureNames("two-fluids", 0, 5));
+  EXPECT_EQ(listFrameFiles(out), pictureNames("two-fluids", 0, 5));
   ASSERT_TRUE(fs::is_regular_file(movie));
   const std::string bytes = readFile(movie);
   EXPECT_GT(bytes.size(), 2000u);  // six 320x200 pictures, not an empty container

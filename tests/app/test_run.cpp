@@ -44,8 +44,8 @@ std::vector<std::string> objectNames(const fs::path& scene) {
 
 /// Every file of `a` equals the same file of `b`, byte for byte, and they list the same files.
 void expectSameFiles(const fs::path& a, const fs::path& b) {
-  const auto files = listFiles(a);
-  ASSERT_EQ(files, listFiles(b));
+  const auto files = listFrameFiles(a);
+  ASSERT_EQ(files, listFrameFiles(b));
   ASSERT_FALSE(files.empty());
   for (const std::string& f : files) EXPECT_TRUE(readFile(a / f) == readFile(b / f)) << f << " differs";
 }
@@ -65,7 +65,7 @@ TEST_P(Examples, ThreeFramesWriteEveryFormatAndReadBack) {
   const RunResult r = runSoftsub("run --frames 3 --out " + quote(out) + " " + quote(scene), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string stem = scene.stem().string();
-  EXPECT_EQ(listFiles(out), expectedFiles(stem, fluidNames(scene), 3, true, true, true, objectNames(scene)));
+  EXPECT_EQ(listFrameFiles(out), expectedFiles(stem, fluidNames(scene), 3, true, true, true, objectNames(scene)));
   const auto counts = fluidCounts(scene);
   for (int f = 0; f <= 3; ++f) {
     const cache::SimFile sim = cache::readSimFile(out / fmt::format("{}.{:04}.sim", stem, f));
@@ -108,7 +108,7 @@ TEST(Run, EveryExampleIsCovered) {
     const RunResult r = runSoftsub("run -q --frames 1 --formats sim --out " + quote(tmp / "o") + " " + quote(p),
                                    tmp.path());
     EXPECT_EQ(r.code, 0) << p << "\n" << r.err;
-    EXPECT_EQ(listFiles(tmp / "o").size(), 2u + objectNames(p).size()) << p;
+    EXPECT_EQ(listFrameFiles(tmp / "o").size(), 2u + objectNames(p).size()) << p;
   }
 }
 
@@ -118,7 +118,7 @@ TEST(Run, DefaultOutputFolderIsBesideTheScene) {
   const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
   const RunResult r = runSoftsub("run -q --frames 2 " + quote(scene), tmp / "work");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
+  EXPECT_EQ(listFrameFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
   EXPECT_TRUE(listEntries(tmp / "work").empty());
 }
 
@@ -128,8 +128,8 @@ TEST(Run, FormatsSimWritesOnlySimFiles) {
       "run -q --frames 2 --formats sim --out " + quote(tmp / "o") + " " + quote(examplesDir() / "two-fluids.scene"),
       tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "o"), expectedFiles("two-fluids", {}, 2, true, false, false));
-  EXPECT_EQ(listEntries(tmp / "o").size(), 3u);  // no pdc/ or ply/ folder either
+  EXPECT_EQ(listFrameFiles(tmp / "o"), expectedFiles("two-fluids", {}, 2, true, false, false));
+  EXPECT_EQ(listEntries(tmp / "o").size(), 5u);  // no pdc/ or ply/ folder either (3 frames, manifest/, checkpoint/)
 }
 
 TEST(Run, FormatsPdcPlyAndNone) {
@@ -137,7 +137,7 @@ TEST(Run, FormatsPdcPlyAndNone) {
   const fs::path scene = examplesDir() / "two-fluids.scene";
   ASSERT_EQ(runSoftsub("run -q --frames 1 --formats pdc,ply --out " + quote(tmp / "o") + " " + quote(scene),
                        tmp.path()).code, 0);
-  EXPECT_EQ(listFiles(tmp / "o"), expectedFiles("two-fluids", {"syrup", "oil"}, 1, false, true, true));
+  EXPECT_EQ(listFrameFiles(tmp / "o"), expectedFiles("two-fluids", {"syrup", "oil"}, 1, false, true, true));
   const RunResult none =
       runSoftsub("run --frames 1 --formats none --out " + quote(tmp / "n") + " " + quote(scene), tmp.path());
   EXPECT_EQ(none.code, 0) << none.err;
@@ -165,7 +165,7 @@ TEST(Run, SeedFlagsBehaveAsDocumented) {
   const RunResult seed =
       runSoftsub("-f " + quote(scene) + " -updateNum 2 -record 1 -stopRecordingAt 2", tmp.path());
   ASSERT_EQ(seed.code, 0) << seed.err;
-  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
+  EXPECT_EQ(listFrameFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
   EXPECT_TRUE(seed.err.empty()) << seed.err;
   // The same run spelled with softsub's own options gives the same bytes.
   const RunResult own =
@@ -189,7 +189,7 @@ TEST(Run, SeedStopRecordingAtMinusOneAndDrawPerFrame) {
       "-f " + quote(scene) + " -stopRecordingAt -1 -drawPerFrame 1 --frames 1 --formats sim", tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;  // the note is for a terminal (tests/app/test_terminal.cpp)
-  EXPECT_EQ(listFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {}, 1, true, false, false));
+  EXPECT_EQ(listFrameFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {}, 1, true, false, false));
 }
 
 TEST(Run, StopRecordingAtBeyondTheLastFrameRunsTheScene) {
@@ -198,7 +198,7 @@ TEST(Run, StopRecordingAtBeyondTheLastFrameRunsTheScene) {
                                      quote(tmp / "o") + " " + quote(examplesDir() / "two-fluids.scene"),
                                  tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "o").size(), 3u);
+  EXPECT_EQ(listFrameFiles(tmp / "o").size(), 3u);
 }
 
 // Issue 2: "quiet when not a terminal or with --quiet". A pipe, a file or a farm log
@@ -225,7 +225,7 @@ TEST(Run, NothingButErrorsWhenNotATerminal) {
   const std::size_t n = std::fread(buf, 1, sizeof buf - 1, pipe);
   EXPECT_EQ(::pclose(pipe), 0);
   EXPECT_EQ(std::stoi(std::string(buf, n)), 0) << "bytes written to the pipe";
-  EXPECT_EQ(listFiles(tmp / "p"), expectedFiles("two-fluids", {"syrup", "oil"}, 1));
+  EXPECT_EQ(listFrameFiles(tmp / "p"), expectedFiles("two-fluids", {"syrup", "oil"}, 1));
 }
 
 TEST(Run, ZeroFramesWritesTheInitialState) {
@@ -234,7 +234,7 @@ TEST(Run, ZeroFramesWritesTheInitialState) {
                                      quote(examplesDir() / "jelly-block.scene"),
                                  tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(listFiles(tmp / "o"), std::vector<std::string>{"jelly-block.0000.sim"});
+  EXPECT_EQ(listFrameFiles(tmp / "o"), std::vector<std::string>{"jelly-block.0000.sim"});
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ TEST(SurfaceCli, RunWritesClosedMeshesOfTheFluidsVolumeAndLevelSets) {
                                  tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const double count = fluidCounts(scene).at(0);  // honey-drop: ParticleSize 1
-  EXPECT_EQ(listFiles(tmp / "o/mesh"),
+  EXPECT_EQ(listFrameFiles(tmp / "o/mesh"),
             (std::vector<std::string>{"honey.0000.obj", "honey.0001.obj", "honey.0002.obj"}));
   for (int f = 0; f <= 2; ++f) {
     const fs::path obj = tmp / "o/mesh" / (frameName(f) + ".obj");
@@ -49,7 +49,7 @@ TEST(SurfaceCli, RunWritesClosedMeshesOfTheFluidsVolumeAndLevelSets) {
     EXPECT_NEAR(back.voxelSize(), 0.5, 1e-6);  // half the particle size (1), the default
   }
   // Nothing half-written is left behind.
-  EXPECT_EQ(listFiles(tmp / "o/vdb").size(), 3u);
+  EXPECT_EQ(listFrameFiles(tmp / "o/vdb").size(), 3u);
 }
 
 TEST(SurfaceCli, VoxelSizeReachesTheLevelSetsAndIsCheckedFirst) {
@@ -142,7 +142,7 @@ TEST(SurfaceCli, MeshDrawsProgressAndASummaryAtATerminal) {
   const std::size_t done = r.out.find("\r\ndone: 3 frames meshed, ");
   ASSERT_NE(done, std::string::npos) << r.out;
   EXPECT_LT(last, done);
-  EXPECT_EQ(listFiles(tmp / "honey-dropSim/mesh").size(), 3u);
+  EXPECT_EQ(listFrameFiles(tmp / "honey-dropSim/mesh").size(), 3u);
 }
 
 TEST(SurfaceCli, MeshRefusesNonSurfaceFormatsAndMissingFrames) {

@@ -33,7 +33,7 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
   EXPECT_LT(last, done);
   EXPECT_NE(t.find(" ms/frame), output: " + (tmp / "o").string() + "/\r\n", done), std::string::npos) << t;
   EXPECT_NE(t.find("note: -drawPerFrame applies to the viewer"), std::string::npos) << t;
-  EXPECT_EQ(listFiles(tmp / "o").size(), 4u);
+  EXPECT_EQ(listFrameFiles(tmp / "o").size(), 4u);
 }
 
 TEST(Terminal, QuietPrintsNothingEvenAtATerminal) {

@@ -23,9 +23,9 @@ TEST(ThreadsCli, RunWritesTheSameBytesOnOneAndTwoThreads) {
                                    tmp.path());
   ASSERT_EQ(one.code, 0) << one.err;
   ASSERT_EQ(two.code, 0) << two.err;
-  const auto files = listFiles(tmp / "one");
+  const auto files = listFrameFiles(tmp / "one");
   ASSERT_EQ(files.size(), 5u);
-  EXPECT_EQ(listFiles(tmp / "two"), files);
+  EXPECT_EQ(listFrameFiles(tmp / "two"), files);
   for (const std::string& f : files) EXPECT_EQ(readFile(tmp / "one" / f), readFile(tmp / "two" / f)) << f;
 }
 

@@ -211,7 +211,7 @@ TEST(Viewer, PlaysBackARecordedFolder) {
   }
   expectScreenshotShows(tmp / "play.png", cameraOf(desc), frame);
   // Playing back writes nothing into the recording.
-  EXPECT_EQ(listFiles(recorded).size(), 5u);
+  EXPECT_EQ(listFrameFiles(recorded).size(), 5u);
 }
 
 TEST(Viewer, ARecordingRefusesParameterEdits) {

@@ -1,7 +1,9 @@
 // Conservation laws, determinism, id order and blow-up detection of the stepper.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstring>
 
 #include "core/error.h"
@@ -285,6 +287,49 @@ TEST(Simulation, BlowUpIsReportedWithFrameFluidAndParticle) {
     EXPECT_NE(msg.find("particle id " + std::to_string(id)), std::string::npos) << msg;
     EXPECT_NE(msg.find("is nan"), std::string::npos) << msg;
   }
+}
+
+TEST(Simulation, EverySubstepIsCheckedAndTheLowestBadIdIsNamed) {
+  Model m = twoFluids();
+  State s = cloudState(50, 1, m);
+  // Finite but absurd speeds: far beyond maxTravelPerSubstep interaction distances.
+  s.particles.vx[9] = 1e9f;
+  s.particles.vz[4] = -1e9f;
+  const std::uint32_t lowest = std::min(s.particles.id[9], s.particles.id[4]);
+  Simulation sim(m, s);
+  try {
+    sim.advanceFrame();
+    FAIL() << "expected BlowUpError";
+  } catch (const BlowUpError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("frame 1, substep 1 of " + std::to_string(m.substeps)), std::string::npos) << msg;
+    EXPECT_NE(msg.find("particle id " + std::to_string(lowest) + ":"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("speed is"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("fluid '"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(sim.state().frame, 0) << "the frame was not completed";
+}
+
+TEST(Simulation, TheSpeedCheckFollowsItsLimitAndCanBeTurnedOff) {
+  Model m = twoFluids();
+  State s = cloudState(50, 1, m);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.particles.vx[i] = s.particles.vy[i] = s.particles.vz[i] = 0;
+  EXPECT_EQ(Simulation(m, s).travelPerSubstep(), 0.0) << "nothing moves";
+  // A particle that covers 5 interaction distances a substep passes a limit of 10 and
+  // fails one of 2.
+  const double cutoff = std::sqrt(m.table.rowCutoff2(s.particles.material[0]));
+  s.particles.vy[0] = static_cast<float>(5 * cutoff * m.framesPerSecond * m.substeps);
+  Simulation moving(m, s);
+  EXPECT_NEAR(moving.travelPerSubstep(), 5.0, 1e-3);
+  m.maxTravelPerSubstep = 10;
+  EXPECT_NO_THROW(Simulation(m, s).checkFinite());
+  m.maxTravelPerSubstep = 2;
+  EXPECT_THROW(Simulation(m, s).checkFinite(), BlowUpError);
+  m.maxTravelPerSubstep = 0;  // off: only non-finite values fail
+  s.particles.vy[0] = 1e30f;
+  EXPECT_NO_THROW(Simulation(m, s).checkFinite());
+  s.particles.vy[0] = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(Simulation(m, s).checkFinite(), BlowUpError);
 }
 
 TEST(FrameLoop, ObserversSeeFrameZeroThenEveryFrameAndStopEarly) {

@@ -232,5 +232,46 @@ TEST(Stability, ABlobCalledUnstableFlingsItsParticlesAndRestsAtMinimumSubsteps) 
   EXPECT_GT(fastestOverTwoSeconds(first - 1), 3 * reference) << first - 1 << " substeps";
 }
 
+// --adaptive: the blob that flings its particles at 4 substeps a frame is calm when
+// adaptive stepping chooses the count: every frame gets at least the stability
+// estimate's minimum, and the motion is the reference's.
+TEST(Stability, AdaptiveSubstepsKeepTheUnstableBlobCalm) {
+  const int minimum = blobReport(1).minimumSubsteps;
+  const double reference = fastestOverTwoSeconds(4 * minimum);
+  scene::Compiled c = scene::compile(jellyBlob(4));
+  c.model.adaptiveSubsteps = true;
+  Simulation sim(c.model, std::move(c.state));
+  double fastest = 0;
+  for (int f = 0; f < 48; ++f) {
+    const int chosen = sim.chooseSubsteps();
+    ASSERT_NO_THROW(sim.advanceFrame()) << "frame " << f;
+    EXPECT_EQ(sim.substeps(), chosen);
+    EXPECT_GE(sim.substeps(), minimum);
+    EXPECT_LE(sim.substeps(), c.model.maxSubsteps);
+    fastest = std::max(fastest, maxSpeed(sim));
+  }
+  EXPECT_NEAR(fastest, reference, 0.1 * reference);
+  // The cap holds even when the state asks for more.
+  c = scene::compile(jellyBlob(4));
+  c.model.adaptiveSubsteps = true;
+  c.model.maxSubsteps = 6;
+  EXPECT_EQ(Simulation(c.model, std::move(c.state)).chooseSubsteps(), 6);
+}
+
+// A fast particle asks for substeps by its speed: v T / n <= kAdaptiveTravel reach.
+TEST(Stability, AdaptiveSubstepsFollowTheFastestParticle) {
+  scene::SceneDesc d = jellyBlob(4);
+  d.fluids[0].params = {2, 150, 1, -150, 2000, 0, 1, 1};  // no viscosity
+  scene::Compiled c = scene::compile(d);
+  c.model.adaptiveSubsteps = true;
+  const double reach = std::sqrt(c.model.table.rowCutoff2(0));
+  const int base = Simulation(c.model, c.state).chooseSubsteps();
+  const double speed = 100 * base * kAdaptiveTravel * reach * c.model.framesPerSecond;  // needs 100x base
+  c.state.particles.vx[0] = static_cast<float>(speed);
+  const int n = Simulation(c.model, c.state).chooseSubsteps();
+  EXPECT_GE(n, 100 * base - 1);
+  EXPECT_LE(n, 100 * base + 1);
+}
+
 }  // namespace
 }  // namespace softsub::solver

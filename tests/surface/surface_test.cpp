@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "cache/atomic_file.h"
 #include "surface/surface.h"
 
 namespace ss = softsub::surface;
@@ -138,6 +139,14 @@ TEST(Surface, VdbReadsBackAndItsZeroCrossingIsTheMesh) {
   const auto file = std::filesystem::temp_directory_path() / "softsub_surface_ball.vdb";
   ls.writeVdb(file, "fluid");
   const auto back = ss::LevelSet::readVdb(file);
+  // The file's UUID comes from its content (OpenVDB's is random): the same level set
+  // written again is the same file, byte for byte, which a resumed run relies on.
+  const std::string bytes = softsub::cache::readFileBytes(file);
+  ss::LevelSet::fromParticles(xyz, 1.0).writeVdb(file, "fluid");
+  EXPECT_EQ(softsub::cache::readFileBytes(file), bytes);
+  ss::LevelSet::fromParticles(xyz, 1.0).writeVdb(file, "other");
+  EXPECT_NE(softsub::cache::readFileBytes(file).substr(21, 36), bytes.substr(21, 36)) << "another grid, another id";
+  EXPECT_EQ(bytes.substr(21 + 8, 1), "-");
   std::filesystem::remove(file);
   EXPECT_DOUBLE_EQ(back.voxelSize(), ls.voxelSize());
   EXPECT_EQ(back.activeVoxelCount(), ls.activeVoxelCount());

@@ -1,0 +1,255 @@
+// No frame lost, exact resume (issue #7): manifests mark complete frames, `run --resume`
+// reproduces an uninterrupted run byte for byte after a stop, a kill at any moment or a
+// full disk, and a run with other settings is never resumed.
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+#include <thread>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "app_test_util.h"
+#include "cache/manifest.h"
+#include "cache/pdc_format.h"
+#include "cache/ply_format.h"
+#include "cache/sim_format.h"
+
+namespace softsub::apptest {
+namespace {
+
+using Tree = std::map<std::string, std::string>;
+
+/// Every file under `dir` with its bytes.
+Tree treeOf(const fs::path& dir) {
+  Tree t;
+  for (const std::string& f : listFiles(dir)) t[f] = readFile(dir / f);
+  return t;
+}
+
+/// The files of `a` and `b` that differ or exist in one only (empty when equal).
+std::vector<std::string> differences(const Tree& a, const Tree& b) {
+  std::vector<std::string> d;
+  for (const auto& [name, bytes] : a) {
+    const auto it = b.find(name);
+    if (it == b.end()) d.push_back("only in the first: " + name);
+    else if (it->second != bytes) d.push_back("differs: " + name);
+  }
+  for (const auto& [name, bytes] : b)
+    if (!a.contains(name)) d.push_back("only in the second: " + name);
+  return d;
+}
+
+bool hasTemporaries(const fs::path& dir) {
+  for (const std::string& f : listFiles(dir))
+    if (fs::path(f).filename().string().find(".tmp.") != std::string::npos) return true;
+  return false;
+}
+
+std::string scenePath(const std::string& name) { return quote(examplesDir() / name); }
+
+/// Checks every frame that has a manifest: complete, and each listed file reads back
+/// whole with finite values. Returns how many frames were checked.
+int checkCompleteFrames(const fs::path& out, const std::string& scene) {
+  int checked = 0;
+  for (const std::int64_t f : cache::manifestFrames(out, scene)) {
+    const fs::path mp = cache::manifestPath(out, scene, f);
+    const cache::Manifest m = cache::decodeManifest(readFile(mp), mp.string());
+    EXPECT_EQ(m.frame, f);
+    EXPECT_EQ(cache::incompleteReason(out, m, false), "") << mp;
+    for (const cache::ManifestEntry& e : m.files) {
+      const fs::path p = out / e.path;
+      if (p.extension() == ".sim") {
+        const cache::SimFile sim = cache::readSimFile(p);
+        EXPECT_EQ(sim.frame.frame, f) << p;
+        for (const FluidSnapshot& fluid : sim.frame.fluids)
+          for (const float x : fluid.positions) EXPECT_TRUE(std::isfinite(x)) << p;
+      } else if (p.extension() == ".pdc") {
+        EXPECT_GT(cache::readPdcFile(p).count, 0) << p;
+      } else if (p.extension() == ".ply") {
+        const cache::PlyCloud ply = cache::readPlyFile(p);
+        EXPECT_TRUE(ply.hasFrame && ply.frame == f) << p;
+        EXPECT_GT(ply.vertexCount, 0u) << p;
+      }
+    }
+    ++checked;
+  }
+  return checked;
+}
+
+TEST(Resume, AfterAShorterRunTheOutputsAreByteIdenticalWithBodiesAndAdaptiveSubsteps) {
+  for (const std::string options : {"", " --adaptive --checkpoint-every 3 --integrator velocity-verlet"}) {
+    TempDir tmp;
+    const std::string base = "run -q " + scenePath("box-on-jelly.scene") + options;
+    ASSERT_EQ(runSoftsub(base + " --frames 10 --out ref", tmp.path()).code, 0);
+    ASSERT_EQ(runSoftsub(base + " --frames 4 --out part", tmp.path()).code, 0);
+    const RunResult r = runSoftsub(base + " --frames 10 --resume --out part", tmp.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Tree ref = treeOf(tmp / "ref");
+    EXPECT_EQ(differences(ref, treeOf(tmp / "part")), std::vector<std::string>{}) << options;
+    EXPECT_TRUE(ref.contains("manifest/box-on-jelly.0010.manifest"));
+    EXPECT_EQ(ref.contains("checkpoint/box-on-jelly.0010.state"), options.empty()) << "every frame's by default";
+    EXPECT_EQ(ref.contains("checkpoint/box-on-jelly.0009.state"), true) << "a multiple of 3 and of 1";
+    EXPECT_EQ(checkCompleteFrames(tmp / "ref", "box-on-jelly"), 11);
+    // A finished run resumed again has nothing to do and changes nothing.
+    ASSERT_EQ(runSoftsub(base + " --frames 10 --resume --out part", tmp.path()).code, 0);
+    EXPECT_EQ(differences(ref, treeOf(tmp / "part")), std::vector<std::string>{});
+  }
+}
+
+TEST(Resume, KilledAtRandomMomentsEveryFinishedFrameIsValidAndResumeMatches) {
+  TempDir tmp;
+  const std::vector<std::string> args = {"run",      (examplesDir() / "softsub-demo.scene").string(),
+                                         "--frames", "24",
+                                         "--out"};
+  const auto start = std::chrono::steady_clock::now();
+  {
+    std::vector<std::string> a = args;
+    a.push_back((tmp / "ref").string());
+    const int pid = spawnSoftsub(a, tmp / "err");
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readFile(tmp / "err");
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Tree ref = treeOf(tmp / "ref");
+  std::mt19937 rng(20261122);
+  std::uniform_real_distribution<double> when(0.0, 1.1 * seconds);
+  int kills = 0, midWrite = 0, beforeAnyFrame = 0;
+  // At least 20 kills, and on until one has landed in the middle of a write (a
+  // temporary file on disk): each kill lands there with a chance of about 1 in 5.
+  for (int attempt = 0; attempt < 80 && (kills < 20 || midWrite == 0); ++attempt) {
+    const fs::path out = tmp / fmt::format("k{}", attempt);
+    std::vector<std::string> a = args;
+    a.push_back(out.string());
+    const int pid = spawnSoftsub(a, tmp / "err");
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::duration<double>(when(rng)));
+    // Frozen first, so what is on disk is what the kill leaves.
+    ::kill(pid, SIGSTOP);
+    const bool tmpOnDisk = hasTemporaries(out);
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ++kills;
+    midWrite += tmpOnDisk ? 1 : 0;
+    const int complete = checkCompleteFrames(out, "softsub-demo");
+    beforeAnyFrame += complete == 0 ? 1 : 0;
+    const RunResult r = runSoftsub("run -q " + scenePath("softsub-demo.scene") + " --frames 24 --resume --out " +
+                                       quote(out),
+                                   tmp.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_FALSE(hasTemporaries(out)) << "stale temporaries are removed";
+    ASSERT_EQ(differences(ref, treeOf(out)), std::vector<std::string>{})
+        << "kill " << kills << " after " << complete << " complete frames";
+    fs::remove_all(out);
+  }
+  EXPECT_GE(kills, 20);
+  EXPECT_GT(midWrite, 0) << "no kill landed in the middle of a write";
+  ::testing::Test::RecordProperty("kills", kills);
+  ::testing::Test::RecordProperty("mid_write", midWrite);
+  std::printf("%d kills, %d in the middle of a write, %d before the first frame was complete\n", kills, midWrite,
+              beforeAnyFrame);
+}
+
+TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
+  TempDir tmp;
+  const std::string base = "run -q " + scenePath("two-fluids.scene") + " --frames 3 --out o";
+  ASSERT_EQ(runSoftsub(base, tmp.path()).code, 0);
+  const Tree before = treeOf(tmp / "o");
+  for (const std::string other : {" --substeps 9", " --formats sim,pdc", " --integrator explicit-euler",
+                                  " --adaptive", " --speed-limit 5"}) {
+    const RunResult r = runSoftsub(base + " --resume" + other, tmp.path());
+    EXPECT_EQ(r.code, 2) << other << "\n" << r.err;
+    EXPECT_NE(r.err.find("other settings"), std::string::npos) << r.err;
+    EXPECT_EQ(differences(before, treeOf(tmp / "o")), std::vector<std::string>{}) << other;
+  }
+  // The thread count is not a setting: results do not depend on it.
+  EXPECT_EQ(runSoftsub("--threads 1 " + base + " --resume", tmp.path()).code, 0);
+  // More frames than before extend the run.
+  EXPECT_EQ(runSoftsub("run -q " + scenePath("two-fluids.scene") + " --frames 5 --out o --resume", tmp.path()).code,
+            0);
+  ASSERT_EQ(runSoftsub("run -q " + scenePath("two-fluids.scene") + " --frames 5 --out ref", tmp.path()).code, 0);
+  EXPECT_EQ(differences(treeOf(tmp / "ref"), treeOf(tmp / "o")), std::vector<std::string>{});
+  // Nothing to resume without outputs.
+  const RunResult none = runSoftsub(base + " --resume --formats none", tmp.path());
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("--resume"), std::string::npos) << none.err;
+}
+
+TEST(Resume, NothingToResumeStartsAtFrameZeroAndAFreshRunForgetsTheOldOne) {
+  TempDir tmp;
+  const std::string base = "run -q " + scenePath("honey-drop.scene");
+  ASSERT_EQ(runSoftsub(base + " --frames 4 --out ref", tmp.path()).code, 0);
+  ASSERT_EQ(runSoftsub(base + " --frames 4 --out o --resume", tmp.path()).code, 0);
+  EXPECT_EQ(differences(treeOf(tmp / "ref"), treeOf(tmp / "o")), std::vector<std::string>{});
+  // A fresh, shorter run into the same folder: the old run's manifests and checkpoints go.
+  ASSERT_EQ(runSoftsub(base + " --frames 2 --substeps 9 --out o", tmp.path()).code, 0);
+  EXPECT_EQ(cache::manifestFrames(tmp / "o", "honey-drop"), (std::vector<std::int64_t>{0, 1, 2}));
+  EXPECT_EQ(cache::checkpointFrames(tmp / "o", "honey-drop"), (std::vector<std::int64_t>{1, 2})) << "the two newest";
+  // --checkpoint-every 0: manifests, no checkpoint; resume then starts over.
+  ASSERT_EQ(runSoftsub(base + " --frames 2 --checkpoint-every 0 --out n", tmp.path()).code, 0);
+  EXPECT_EQ(cache::manifestFrames(tmp / "n", "honey-drop").size(), 3u);
+  EXPECT_TRUE(cache::checkpointFrames(tmp / "n", "honey-drop").empty());
+}
+
+TEST(Resume, AFullDiskIsAnIoErrorWithEarlierFramesCompleteAndResumeFinishesTheRun) {
+  TempDir tmp;
+  const std::string base = "run -q " + scenePath("two-fluids.scene") + " --frames 8";
+  ASSERT_EQ(runSoftsub(base + " --out ref", tmp.path()).code, 0);
+  const Tree ref = treeOf(tmp / "ref");
+  std::size_t total = 0;
+  for (const auto& [name, bytes] : ref) total += bytes.size();
+  // The disk fills up about halfway through the run.
+  const std::string env = fmt::format(
+      "LD_PRELOAD={} SOFTSUB_TEST_DISK_BYTES={} ASAN_OPTIONS=${{ASAN_OPTIONS:+$ASAN_OPTIONS:}}"
+      "verify_asan_link_order=0 ",
+      quote(FULL_DISK_SHIM), total / 2);
+  const RunResult r = runCommand(env + quote(softsubBinary()) + " " + base + " --out full", tmp.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_EQ(r.err.rfind("error: cannot write '", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_FALSE(hasTemporaries(tmp / "full")) << "the failed write's temporary file is removed";
+  const int complete = checkCompleteFrames(tmp / "full", "two-fluids");
+  EXPECT_GE(complete, 2);
+  EXPECT_LE(complete, 7);
+  // Space again: the run resumes and ends as if nothing had happened.
+  ASSERT_EQ(runSoftsub(base + " --out full --resume", tmp.path()).code, 0);
+  EXPECT_EQ(differences(ref, treeOf(tmp / "full")), std::vector<std::string>{});
+}
+
+TEST(Resume, AFileSizeLimitIsAnIoErrorNotACrash) {
+  TempDir tmp;
+  // ulimit -f: files of at most 8 blocks (4 or 8 KiB); SIGXFSZ would kill an unprepared process.
+  const RunResult r = runCommand(
+      "ulimit -f 8 && " + quote(softsubBinary()) + " run -q " + scenePath("two-fluids.scene") + " --frames 2 --out o",
+      tmp.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_FALSE(hasTemporaries(tmp / "o"));
+  EXPECT_TRUE(cache::manifestFrames(tmp / "o", "two-fluids").empty()) << "no frame is marked complete";
+}
+
+TEST(BlowUpCheck, TheSpeedLimitStopsARunAtItsSubstepWithEarlierFramesComplete) {
+  TempDir tmp;
+  // The demo's fastest particle covers about 0.06 interaction distances a substep by
+  // frame 24: a limit of 0.01 is crossed a few frames in.
+  const RunResult r =
+      runSoftsub("run -q " + scenePath("softsub-demo.scene") + " --frames 24 --speed-limit 0.01 --out o", tmp.path());
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.err.find(", substep "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("particle id "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("speed is "), std::string::npos) << r.err;
+  const auto frames = cache::manifestFrames(tmp / "o", "softsub-demo");
+  ASSERT_FALSE(frames.empty());
+  EXPECT_LT(frames.back(), 24);
+  EXPECT_NE(r.err.find(fmt::format("frames 0..{} are complete", frames.back())), std::string::npos) << r.err;
+  EXPECT_EQ(checkCompleteFrames(tmp / "o", "softsub-demo"), static_cast<int>(frames.size()));
+}
+
+}  // namespace
+}  // namespace softsub::apptest

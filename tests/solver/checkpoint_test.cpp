@@ -1,0 +1,164 @@
+// Checkpoints (issue #7): a simulation restored from a checkpoint continues bit for bit
+// as the one that wrote it, for every integrator, with bodies and with adaptive
+// substeps; damaged or foreign checkpoints are refused.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "scene/compile.h"
+#include "scene/reader.h"
+#include "solver/checkpoint.h"
+#include "solver/simulation.h"
+
+namespace softsub::solver {
+namespace {
+
+std::string example(const std::string& name) { return std::string(SOFTSUB_SOURCE_DIR) + "/examples/" + name; }
+
+// The whole store in slot order and every body's state, as raw bytes.
+std::string stateBytes(const Simulation& sim) {
+  std::string out;
+  const ParticleStore& p = sim.state().particles;
+  for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz, &p.fx, &p.fy, &p.fz})
+    out.append(reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float));
+  out.append(reinterpret_cast<const char*>(p.id.data()), p.id.size() * sizeof(std::uint32_t));
+  for (const rigid::BodyState& b : sim.state().bodies) {
+    const double v[13] = {b.position.x(),        b.position.y(),        b.position.z(),
+                          b.velocity.x(),        b.velocity.y(),        b.velocity.z(),
+                          b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z(),
+                          b.orientation.w(),     b.orientation.x(),     b.orientation.y(),
+                          b.orientation.z()};
+    out.append(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  return out;
+}
+
+struct Case {
+  std::string scene;
+  scene::Integrator integrator;
+  bool adaptive;
+};
+
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+  std::string s = info.param.scene.substr(0, info.param.scene.find('.'));
+  for (char& c : s)
+    if (c == '-') c = '_';
+  return s + "_" + std::to_string(static_cast<int>(info.param.integrator)) + (info.param.adaptive ? "_adaptive" : "");
+}
+
+scene::Compiled compileCase(const Case& c) {
+  scene::SceneDesc d = scene::readSceneFile(example(c.scene));
+  d.simulation.integrator = c.integrator;
+  scene::Compiled compiled = scene::compile(d);
+  compiled.model.adaptiveSubsteps = c.adaptive;
+  return compiled;
+}
+
+class Restore : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Restore, ContinuesBitForBitAsTheRunThatWroteIt) {
+  constexpr std::uint64_t kRun = 0x1234;
+  scene::Compiled a = compileCase(GetParam());
+  Simulation original(a.model, std::move(a.state));
+  for (int f = 0; f < 5; ++f) original.advanceFrame();
+  std::string bytes;
+  encodeCheckpoint(original, kRun, bytes);
+  EXPECT_EQ(checkpointInfo(bytes, "x").frame, 5);
+  EXPECT_EQ(checkpointInfo(bytes, "x").particles, original.state().particles.size());
+
+  scene::Compiled b = compileCase(GetParam());
+  Simulation restored(b.model, std::move(b.state));
+  restoreCheckpoint(restored, bytes, kRun, "x");
+  EXPECT_EQ(restored.state().frame, 5);
+  EXPECT_EQ(stateBytes(restored), stateBytes(original));
+  // Several frames, so several pair-list rebuilds and re-sorts after the restored list.
+  const std::int64_t builds = original.listBuilds();
+  for (int f = 0; f < 7; ++f) {
+    original.advanceFrame();
+    restored.advanceFrame();
+    ASSERT_EQ(stateBytes(restored), stateBytes(original)) << "frame " << original.state().frame;
+    ASSERT_EQ(restored.substeps(), original.substeps());
+  }
+  EXPECT_GT(original.listBuilds(), builds) << "the continuation rebuilt the list at least once";
+  // A second checkpoint of the restored run is the original's, byte for byte.
+  std::string again, fromOriginal;
+  encodeCheckpoint(restored, kRun, again);
+  encodeCheckpoint(original, kRun, fromOriginal);
+  EXPECT_EQ(again, fromOriginal);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Examples, Restore,
+    ::testing::Values(Case{"two-fluids.scene", scene::Integrator::SymplecticEuler, false},
+                      Case{"two-fluids.scene", scene::Integrator::VelocityVerlet, false},
+                      Case{"softsub-demo.scene", scene::Integrator::ExplicitEuler, true},
+                      Case{"box-on-jelly.scene", scene::Integrator::SymplecticEuler, false},
+                      Case{"box-on-jelly.scene", scene::Integrator::VelocityVerlet, true},
+                      Case{"wall-impact.scene", scene::Integrator::SymplecticEuler, false}),
+    caseName);
+
+class Refuse : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene::Compiled c = scene::compile(scene::readSceneFile(example("two-fluids.scene")));
+    model_ = std::move(c.model);
+    Simulation sim(model_, std::move(c.state));
+    sim.advanceFrame();
+    encodeCheckpoint(sim, 7, bytes_);
+  }
+  [[nodiscard]] std::string problemOf(const std::string& bytes, std::uint64_t fingerprint = 7) {
+    scene::Compiled c = scene::compile(scene::readSceneFile(example("two-fluids.scene")));
+    Simulation sim(model_, std::move(c.state));
+    const std::string before = stateBytes(sim);
+    try {
+      restoreCheckpoint(sim, bytes, fingerprint, "run/x.state");
+    } catch (const InputError& e) {
+      EXPECT_EQ(stateBytes(sim), before) << "a refused checkpoint changes nothing";
+      EXPECT_EQ(e.where().file, "run/x.state");
+      return e.problem();
+    }
+    return "accepted";
+  }
+  Model model_;
+  std::string bytes_;
+};
+
+TEST_F(Refuse, DamagedCutForeignAndOtherRunsCheckpoints) {
+  EXPECT_EQ(problemOf(bytes_), "accepted");
+  for (std::size_t at : {std::size_t{3}, std::size_t{40}, bytes_.size() / 2, bytes_.size() - 3}) {
+    std::string flipped = bytes_;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+    EXPECT_NE(problemOf(flipped), "accepted") << "byte " << at;
+  }
+  for (std::size_t keep : {std::size_t{0}, std::size_t{10}, std::size_t{60}, bytes_.size() - 1})
+    EXPECT_NE(problemOf(bytes_.substr(0, keep)), "accepted") << keep << " bytes";
+  EXPECT_NE(problemOf(bytes_ + "x"), "accepted");
+  EXPECT_NE(problemOf(bytes_, 8).find("other settings"), std::string::npos);
+  EXPECT_NE(problemOf("not a checkpoint at all, but long enough to have a header and a sum"), "accepted");
+  // A checkpoint of another scene (other counts) does not fit this model.
+  scene::Compiled other = scene::compile(scene::readSceneFile(example("honey-drop.scene")));
+  Simulation sim(other.model, std::move(other.state));
+  std::string foreign;
+  encodeCheckpoint(sim, 7, foreign);
+  EXPECT_NE(problemOf(foreign).find("does not fit"), std::string::npos);
+}
+
+TEST(HashBytes, EveryByteAndTheSeedMatter) {
+  const std::string text(100, 'a');
+  const std::uint64_t h = hashBytes(text);
+  EXPECT_EQ(hashBytes(text), h);
+  EXPECT_NE(hashBytes(text, 1), h);
+  EXPECT_NE(hashBytes(text.substr(0, 99)), h);
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    std::string t = text;
+    t[i] = 'b';
+    EXPECT_NE(hashBytes(t), h) << i;
+  }
+}
+
+}  // namespace
+}  // namespace softsub::solver
