@@ -52,6 +52,8 @@ int writeAll(int fd, std::string_view bytes) {
 
 }  // namespace
 
+std::filesystem::path temporaryPathFor(const std::filesystem::path& path) { return temporaryName(path); }
+
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes) {
   if (path.filename().empty()) fail("write", path, EISDIR);
   const std::filesystem::path tmp = temporaryName(path);

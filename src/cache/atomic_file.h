@@ -12,6 +12,12 @@ namespace softsub::cache {
 /// removed, `path` is left as it was, and IoError names the path and the reason.
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes);
 
+/// A temporary name for `path` in the same folder, unique to this process and call:
+/// `.<name>.tmp.<pid>.<n>`, the name writeFileAtomic writes under, which the next run
+/// recognises and removes when its process is gone (removeStaleTemporaries). For files a
+/// library writes itself (OpenVDB): write there, then rename over `path`.
+[[nodiscard]] std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
+
 /// Creates `dir` and its missing parents; IoError if that fails or `dir` is not a folder.
 void ensureDirectory(const std::filesystem::path& dir);
 

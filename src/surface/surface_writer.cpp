@@ -70,8 +70,7 @@ void SurfaceWriter::onFrame(const FrameSnapshot& frame) {
       // OpenVDB writes the file itself: a temporary name in the same folder, then a rename,
       // so a reader never sees half a file.
       std::filesystem::path path = vdbPath(dir_, fluid.name, frame.frame);
-      std::filesystem::path temp = path;
-      temp += ".partial";
+      const std::filesystem::path temp = cache::temporaryPathFor(path);
       level.writeVdb(temp, fluid.name);
       std::error_code ec;
       std::filesystem::rename(temp, path, ec);
