@@ -109,7 +109,7 @@ int meshLoader(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   static const ScratchFolder folder;
   static const char* const kExtensions[] = {".obj", ".ply", ".stl"};
-  const fs::path file = folder.path() / (std::string("mesh") + kExtensions[data[0] % 3]);
+  const fs::path file = folder.path() / std::string("mesh").append(kExtensions[data[0] % 3]);
   writeBytes(file, data + 1, size - 1);
   geometry::TriangleMesh mesh;
   geometry::MeshLoadReport report;

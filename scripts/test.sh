@@ -6,11 +6,14 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
+#   scripts/test.sh --fuzz      the libFuzzer targets (clang, ASan + UBSan) in build-fuzz/: every
+#                               regression input, then each target for FUZZ_SECONDS (default 60)
 mode=${1:-}
 case "$mode" in
   "") dir=build-test; config=(-DCMAKE_BUILD_TYPE=Release) ;;
   --sanitize) dir=build-asan; config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSUB_SANITIZE=ON) ;;
-  *) echo "usage: $0 [--sanitize]" >&2; exit 2 ;;
+  --fuzz) exec ./scripts/fuzz.sh ;;
+  *) echo "usage: $0 [--sanitize | --fuzz]" >&2; exit 2 ;;
 esac
 # The benchmarks are built too (not run) so that they cannot rot unnoticed.
 if [[ -f bench/CMakeLists.txt && -z "$mode" ]]; then config+=(-DSOFTSUB_BUILD_BENCH=ON); fi
