@@ -20,23 +20,32 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWit
 cmake --build build-fuzz -j2
 
 # Seeds: the corpus a target starts from (not committed: made from the repository's files).
+# Only the chosen targets' folders are remade, so two runs of different targets can share
+# build-fuzz/.
 seeds=build-fuzz/seeds
-rm -rf "$seeds"
-mkdir -p "$seeds"/{scene_reader,mesh_loader,frame_readers}
-cp examples/*.scene tests/data/scenes/good/*.scene tests/data/scenes/bad/*.scene \
-   tests/data/bad/*.scene "$seeds/scene_reader/"
-# mesh_loader: the first byte picks the extension (0 .obj, 1 .ply, 2 .stl).
-n=0
-for m in examples/*Geo/*.obj tests/data/scenes/good/*Geo/*.obj tests/data/bad/meshes/* fuzz/seeds/meshes/*; do
-  [[ -f "$m" ]] || continue
-  case "${m,,}" in
-    *.obj) prefix='\x00' ;; *.ply) prefix='\x01' ;; *.stl) prefix='\x02' ;; *) continue ;;
+for t in "${targets[@]}"; do
+  rm -rf "${seeds:?}/$t"
+  mkdir -p "$seeds/$t"
+  n=0
+  case $t in
+    scene_reader)
+      for s in examples/*.scene tests/data/scenes/good/*.scene tests/data/scenes/bad/*.scene tests/data/bad/*.scene; do
+        cp "$s" "$seeds/$t/seed-$((n++))-$(basename "$s")"
+      done ;;
+    mesh_loader)  # the first byte picks the extension (0 .obj, 1 .ply, 2 .stl)
+      for m in examples/*Geo/*.obj tests/data/scenes/good/*Geo/*.obj tests/data/bad/meshes/* fuzz/seeds/meshes/*; do
+        case "${m,,}" in
+          *.obj) prefix='\x00' ;; *.ply) prefix='\x01' ;; *.stl) prefix='\x02' ;; *) continue ;;
+        esac
+        { printf "$prefix"; cat "$m"; } > "$seeds/$t/seed-$((n++))"
+      done ;;
+    frame_readers) cp fuzz/seeds/frames/* "$seeds/$t/" ;;
+    *) echo "fuzz: unknown target $t (scene_reader, mesh_loader, frame_readers)" >&2; exit 2 ;;
   esac
-  { printf "$prefix"; cat "$m"; } > "$seeds/mesh_loader/seed-$((n++))"
 done
-cp fuzz/seeds/frames/* "$seeds/frame_readers/"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan-suppressions.txt}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 status=0
 for t in "${targets[@]}"; do

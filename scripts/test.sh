@@ -23,4 +23,6 @@ if [[ -f bench/CMakeLists.txt && -z "$mode" ]]; then config+=(-DSOFTSUB_BUILD_BE
 cmake -S . -B "$dir" -G Ninja -DSOFTSUB_BUILD_TESTS=ON -DSOFTSUB_WERROR=ON -DSOFTSUB_TEST_MODULES= "${config[@]}"
 cmake --build "$dir" -j2
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# assimp's own leaks (fuzz/lsan-suppressions.txt says which), not ours
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan-suppressions.txt}
 ctest --test-dir "$dir" --output-on-failure -j2

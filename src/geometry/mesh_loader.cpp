@@ -224,12 +224,25 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
   auto close = [&] {
     if (hasProperty) declared += count;
   };
-  for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines) {
+  // assimp's PLY reader loops without end on some malformed headers (found by the fuzzer:
+  // fuzz/regressions/mesh_loader/ply-header-hang), so the header must be lines of the
+  // known keywords ending with end_header.
+  bool ended = false;
+  int lines = 0;
+  for (; lines < 10000 && std::getline(in, line); ++lines) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
-    if (word == "end_header") break;
+    if (word == "end_header") {
+      ended = true;
+      break;
+    }
+    if (word != "format" && word != "comment" && word != "obj_info" && word != "element" &&
+        word != "property" && !word.empty())
+      throw InputError({name, lines + 2, "mesh"},
+                       "this line of the PLY header is not a header line",
+                       "format, comment, obj_info, element, property and end_header lines");
     if (word == "element") {
       close();
       std::string countText;
@@ -244,6 +257,11 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
       hasProperty = true;
     }
   }
+  if (!ended)
+    throw InputError({name, 0, "mesh"},
+                     lines >= 10000 ? std::string("the PLY header has more than 10000 lines")
+                                    : std::string("the PLY header has no end_header line"),
+                     "a PLY header ending with end_header");
   close();
   if (declared > size)
     throw InputError({name, 0, "mesh"},
