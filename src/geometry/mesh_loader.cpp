@@ -297,6 +297,29 @@ void checkStlCounts(const fs::path& file, const std::string& name, std::uintmax_
                      "a triangle count that fits the file (84 + 50 bytes a triangle)");
 }
 
+/// Every face of every mesh has indices, and each is a vertex of its mesh.
+void checkFaces(const aiScene& scene, const std::string& name) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (mesh == nullptr) continue;
+    if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
+      throw InputError({name, 0, "mesh"}, fmt::format("mesh {} has vertices without positions", m),
+                       "vertex positions");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr)
+        throw InputError({name, 0, "mesh"}, fmt::format("face {} of mesh {} has no vertex indices", f, m),
+                         "faces of at least one vertex index each");
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          throw InputError({name, 0, "mesh"},
+                           fmt::format("face {} of mesh {} uses vertex {}, but the mesh has {}", f, m,
+                                       face.mIndices[k], mesh->mNumVertices),
+                           "vertex indices below the vertex count");
+    }
+  }
+}
+
 }  // namespace
 
 MeshEdges countEdges(const TriangleMesh& mesh) {
@@ -337,14 +360,20 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
   // hole filling or smoothing). SortByPType puts points and lines in meshes of their own,
   // which MeshBuilder skips; they are not removed here, so a file of points alone is
   // reported as having no triangles rather than as an assimp failure.
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
-  if (scene == nullptr) {
+  // The file is read without post-processing and checked first: assimp's steps trust the
+  // faces and abort the process on one without indices (found by the fuzzer:
+  // fuzz/regressions/mesh_loader/ply-empty-faces-abort).
+  const auto cannotParse = [&] {
     const std::string why = importer.GetErrorString();
-    throw InputError({name, 0, "mesh"},
-                     fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
-                     "a mesh file assimp reads (OBJ, PLY, STL, glTF, FBX, ...)");
-  }
+    return InputError({name, 0, "mesh"},
+                      fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
+                      "a mesh file assimp reads (OBJ, PLY, STL, glTF, FBX, ...)");
+  };
+  if (importer.ReadFile(name, 0) == nullptr) throw cannotParse();
+  checkFaces(*importer.GetScene(), name);
+  const aiScene* scene =
+      importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (scene == nullptr) throw cannotParse();
 
   MeshBuilder builder(name);
   if (scene->mRootNode != nullptr) {
