@@ -6,11 +6,14 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
+#   scripts/test.sh --fuzz      the libFuzzer targets (clang, ASan + UBSan) in build-fuzz/: every
+#                               regression input, then each target for FUZZ_SECONDS (default 60)
 mode=${1:-}
 case "$mode" in
   "") dir=build-test; config=(-DCMAKE_BUILD_TYPE=Release) ;;
   --sanitize) dir=build-asan; config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSUB_SANITIZE=ON) ;;
-  *) echo "usage: $0 [--sanitize]" >&2; exit 2 ;;
+  --fuzz) exec ./scripts/fuzz.sh ;;
+  *) echo "usage: $0 [--sanitize | --fuzz]" >&2; exit 2 ;;
 esac
 # The benchmarks are built too (not run) so that they cannot rot unnoticed.
 if [[ -f bench/CMakeLists.txt && -z "$mode" ]]; then config+=(-DSOFTSUB_BUILD_BENCH=ON); fi
@@ -20,4 +23,6 @@ if [[ -f bench/CMakeLists.txt && -z "$mode" ]]; then config+=(-DSOFTSUB_BUILD_BE
 cmake -S . -B "$dir" -G Ninja -DSOFTSUB_BUILD_TESTS=ON -DSOFTSUB_WERROR=ON -DSOFTSUB_TEST_MODULES= "${config[@]}"
 cmake --build "$dir" -j2
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# assimp's own leaks (fuzz/lsan-suppressions.txt says which), not ours
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan-suppressions.txt}
 ctest --test-dir "$dir" --output-on-failure -j2

@@ -62,6 +62,9 @@ int fillCommand(const FillOptions& o) {
                      "a number > 0");
   geometry::MeshLoadReport report;
   const geometry::TriangleMesh mesh = geometry::loadMesh(o.mesh, &report);
+  if (!o.surface)
+    if (std::string open = geometry::openMeshWarning(geometry::countEdges(mesh)); !open.empty())
+      report.warnings.push_back(std::move(open) + " (--surface)");
   geometry::MeshFillOptions fo;
   fo.spacing = o.spacing;
   fo.surfaceOnly = o.surface;

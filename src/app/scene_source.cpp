@@ -13,6 +13,7 @@ LoadedScene loadScene(const std::string& path, std::uint64_t maxParticles) {
   scene::ReadOptions options;
   if (maxParticles > 0) options.maxParticles = maxParticles;
   LoadedScene out;
+  options.warnings = &out.warnings;
   if (path.empty()) {
     out.name = kDefaultSceneName;
     out.desc = scene::readSceneText(softsub_default_scene, out.name + ".scene", options);

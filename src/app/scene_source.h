@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "scene/scene_desc.h"
 
@@ -19,6 +20,7 @@ struct LoadedScene {
   scene::SceneDesc desc;               ///< validated description
   std::string name;                    ///< file stem: names the output files
   std::filesystem::path defaultOutDir; ///< <sceneDir>/<name>Sim
+  std::vector<std::string> warnings;   ///< the reader's warnings (meshes repaired or not closed)
 };
 
 /// Reads and validates `path`, or the embedded default scene when `path` is empty.

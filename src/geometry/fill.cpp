@@ -302,7 +302,7 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
                     box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2], s,
                     bound == std::numeric_limits<std::uint64_t>::max() ? std::string("too many")
                                                                        : std::to_string(bound)),
-        fmt::format("at most {} particles: a larger spacing or a higher particle limit",
+        fmt::format("at most {} particles: a larger spacing, or a higher cap (--max-particles)",
                     options.maxParticles));
   }
 

@@ -4,7 +4,9 @@
 #include <bit>
 #include <cerrno>
 #include <cmath>
+#include <cctype>
 #include <cstring>
+#include <string_view>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -105,9 +107,28 @@ class MeshBuilder {
       if (otherPrimitives_ > 0)
         report->warnings.push_back(fmt::format("ignored {} point or line primitive(s)", otherPrimitives_));
     }
-    if (mesh_.triangles.empty())
-      throw InputError({file_, 0, "mesh"}, "the mesh has no triangles",
+    if (mesh_.triangles.empty()) {
+      // Say what there was instead, so "no triangles" is not a mystery.
+      std::string left;
+      const auto add = [&](std::size_t n, const char* what) {
+        if (n > 0) left += fmt::format("{}{} {}", left.empty() ? "" : ", ", n, what);
+      };
+      add(degenerate_, "degenerate triangle(s) dropped");
+      add(outOfRange_, "triangle(s) with a vertex index out of range dropped");
+      add(otherPrimitives_, "point or line primitive(s) ignored");
+      throw InputError({file_, 0, "mesh"},
+                       left.empty() ? std::string("the mesh has no triangles")
+                                    : fmt::format("the mesh has no triangles ({})", left),
                        "at least one triangle with non-zero area");
+    }
+    if (report != nullptr) {
+      const MeshEdges edges = countEdges(mesh_);
+      if (edges.nonManifold > 0)
+        report->warnings.push_back(fmt::format(
+            "{} edge(s) are shared by more than two triangles (non-manifold): kept; inside and outside "
+            "of a fill are decided by a majority of three ray directions",
+            edges.nonManifold));
+    }
     return std::move(mesh_);
   }
 
@@ -203,12 +224,25 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
   auto close = [&] {
     if (hasProperty) declared += count;
   };
-  for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines) {
+  // assimp's PLY reader loops without end on some malformed headers (found by the fuzzer:
+  // fuzz/regressions/mesh_loader/ply-header-hang), so the header must be lines of the
+  // known keywords ending with end_header.
+  bool ended = false;
+  int lines = 0;
+  for (; lines < 10000 && std::getline(in, line); ++lines) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
-    if (word == "end_header") break;
+    if (word == "end_header") {
+      ended = true;
+      break;
+    }
+    if (word != "format" && word != "comment" && word != "obj_info" && word != "element" &&
+        word != "property" && !word.empty())
+      throw InputError({name, lines + 2, "mesh"},
+                       "this line of the PLY header is not a header line",
+                       "format, comment, obj_info, element, property and end_header lines");
     if (word == "element") {
       close();
       std::string countText;
@@ -223,6 +257,11 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
       hasProperty = true;
     }
   }
+  if (!ended)
+    throw InputError({name, 0, "mesh"},
+                     lines >= 10000 ? std::string("the PLY header has more than 10000 lines")
+                                    : std::string("the PLY header has no end_header line"),
+                     "a PLY header ending with end_header");
   close();
   if (declared > size)
     throw InputError({name, 0, "mesh"},
@@ -230,27 +269,111 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
                      "element counts that fit in the file");
 }
 
+/// A binary STL (80-byte header, a 32-bit triangle count, 50 bytes per triangle) whose
+/// count does not fit the file: assimp would otherwise fall back to reading it as ASCII
+/// and fail with a puzzling message. ASCII files (starting with "solid" and holding
+/// "facet") are left to assimp.
+void checkStlCounts(const fs::path& file, const std::string& name, std::uintmax_t size) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".stl" || size < 84) return;
+  std::ifstream in(file, std::ios::binary);
+  std::array<char, 84> head{};
+  if (!in.read(head.data(), head.size())) return;
+  if (std::string_view(head.data(), 5) == "solid") {
+    std::string start(512, '\0');
+    in.seekg(0);
+    in.read(start.data(), static_cast<std::streamsize>(start.size()));
+    start.resize(static_cast<std::size_t>(in.gcount()));
+    if (start.find("facet") != std::string::npos) return;  // ASCII STL
+  }
+  std::uint32_t count = 0;
+  for (int k = 3; k >= 0; --k) count = (count << 8) | static_cast<unsigned char>(head[80 + static_cast<std::size_t>(k)]);
+  const std::uintmax_t need = 84 + std::uintmax_t{50} * count;
+  if (need > size)
+    throw InputError({name, 0, "mesh"},
+                     fmt::format("the binary STL header declares {} triangles, {} bytes, but the file has {}",
+                                 count, need, size),
+                     "a triangle count that fits the file (84 + 50 bytes a triangle)");
+}
+
+/// Every face of every mesh has indices, and each is a vertex of its mesh.
+void checkFaces(const aiScene& scene, const std::string& name) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (mesh == nullptr) continue;
+    if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
+      throw InputError({name, 0, "mesh"}, fmt::format("mesh {} has vertices without positions", m),
+                       "vertex positions");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr)
+        throw InputError({name, 0, "mesh"}, fmt::format("face {} of mesh {} has no vertex indices", f, m),
+                         "faces of at least one vertex index each");
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= mesh->mNumVertices)
+          throw InputError({name, 0, "mesh"},
+                           fmt::format("face {} of mesh {} uses vertex {}, but the mesh has {}", f, m,
+                                       face.mIndices[k], mesh->mNumVertices),
+                           "vertex indices below the vertex count");
+    }
+  }
+}
+
 }  // namespace
+
+MeshEdges countEdges(const TriangleMesh& mesh) {
+  std::unordered_map<std::uint64_t, std::uint32_t> uses;
+  uses.reserve(mesh.triangles.size() * 2);
+  for (const auto& t : mesh.triangles)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k];
+      const std::uint32_t b = t[(k + 1) % 3];
+      if (a == b) continue;
+      ++uses[a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a];
+    }
+  MeshEdges out;
+  for (const auto& [edge, n] : uses) {
+    if (n == 1) ++out.boundary;
+    if (n > 2) ++out.nonManifold;
+  }
+  return out;
+}
+
+std::string openMeshWarning(const MeshEdges& edges) {
+  if (edges.boundary == 0) return {};
+  return fmt::format(
+      "the mesh is not closed ({} edge(s) belong to one triangle only): inside is decided by a majority "
+      "of three ray directions; for a shell, fill the surface instead",
+      edges.boundary);
+}
 
 TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
   const std::string name = file.string();
   const std::uintmax_t size = checkReadable(file, name);
   if (size == 0) throw InputError({name, 0, "mesh"}, "the mesh has no triangles (the file is empty)");
   checkPlyCounts(file, name, size);
+  checkStlCounts(file, name, size);
 
   Assimp::Importer importer;
   // Only steps that reshape what the file holds: nothing invents geometry (no normals,
   // hole filling or smoothing). SortByPType puts points and lines in meshes of their own,
   // which MeshBuilder skips; they are not removed here, so a file of points alone is
   // reported as having no triangles rather than as an assimp failure.
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
-  if (scene == nullptr) {
+  // The file is read without post-processing and checked first: assimp's steps trust the
+  // faces and abort the process on one without indices (found by the fuzzer:
+  // fuzz/regressions/mesh_loader/ply-empty-faces-abort).
+  const auto cannotParse = [&] {
     const std::string why = importer.GetErrorString();
-    throw InputError({name, 0, "mesh"},
-                     fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
-                     "a mesh file assimp reads (OBJ, PLY, STL, glTF, FBX, ...)");
-  }
+    return InputError({name, 0, "mesh"},
+                      fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
+                      "a mesh file assimp reads (OBJ, PLY, STL, glTF, FBX, ...)");
+  };
+  if (importer.ReadFile(name, 0) == nullptr) throw cannotParse();
+  checkFaces(*importer.GetScene(), name);
+  const aiScene* scene =
+      importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (scene == nullptr) throw cannotParse();
 
   MeshBuilder builder(name);
   if (scene->mRootNode != nullptr) {

@@ -18,6 +18,18 @@ struct MeshLoadReport {
   std::size_t droppedTriangles = 0;   ///< degenerate or with out-of-range indices
 };
 
+/// How a mesh's edges are shared (an edge: an unordered pair of vertices of a triangle).
+struct MeshEdges {
+  std::size_t boundary = 0;     ///< used by one triangle only: the mesh is not closed there
+  std::size_t nonManifold = 0;  ///< used by more than two triangles
+};
+
+/// Counts the boundary and non-manifold edges of mesh (indices must be in range).
+[[nodiscard]] MeshEdges countEdges(const TriangleMesh& mesh);
+
+/// The warning for a volume fill of a mesh with boundary edges, "" when it has none.
+[[nodiscard]] std::string openMeshWarning(const MeshEdges& edges);
+
 /// Files larger than this are refused before anything is read.
 inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 
@@ -26,7 +38,8 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// points and lines are ignored; vertices at exactly the same position are merged, so a
 /// closed surface exported with per-face normals or as STL comes back closed. Triangles
 /// with a repeated vertex, zero area or an out-of-range index are dropped and counted in
-/// `report`. Vertices no triangle uses are removed. A mirroring node transform has its
+/// `report`, as are edges shared by more than two triangles (non-manifold: kept, with a
+/// warning). Vertices no triangle uses are removed. A mirroring node transform has its
 /// triangles' winding reversed so orientation is kept.
 ///
 /// Throws IoError when the file cannot be opened or read (message names the file and the

@@ -21,6 +21,7 @@
 #include "scene/fill.h"
 #include "scene/schema.h"
 #include "scene/value_text.h"
+#include "scene/xml_checks.h"
 
 namespace softsub::scene {
 
@@ -98,6 +99,12 @@ class Context {
   [[noreturn]] void fail(int line, std::string element, std::string problem,
                          std::string allowed = {}) const {
     throw InputError({file_, line, std::move(element)}, std::move(problem), std::move(allowed));
+  }
+
+  /// Adds a warning `<file>:<line>: <element>: <text>` when the caller asked for them.
+  void warn(int line, const std::string& element, const std::string& text) const {
+    if (options.warnings == nullptr) return;
+    options.warnings->push_back(formatInputError({file_, line, element}, text, {}));
   }
 
   const ReadOptions& options;
@@ -493,15 +500,17 @@ class SceneReader {
                "a mesh fill gives its lattice step: <Spacing>, > 0");
     }
     const geometry::TriangleMesh mesh =
-        loadGeometry(fill.geometry, c.lineOf("Geometry"), path + "/Geometry");
+        loadGeometry(fill.geometry, c.lineOf("Geometry"), path + "/Geometry", !fill.surface);
     meshBound_ = saturatingAdd(meshBound_, geometry::meshFillBound(mesh, fill.spacing));
   }
 
   // The mesh a <Geometry> (of a mesh fill or an object) names: a relative path that stays
   // inside the scene's folder once symbolic links are resolved, and a file that loads.
   // Every problem is an error at the <Geometry> line (element).
+  // warnIfOpen: a volume fill, which needs a closed mesh to tell inside from outside.
   [[nodiscard]] geometry::TriangleMesh loadGeometry(const std::string& file, int line,
-                                                    const std::string& element) const {
+                                                    const std::string& element,
+                                                    bool warnIfOpen) const {
     namespace fs = std::filesystem;
     const auto fail = [&](const std::string& problem) {
       cx_.fail(line, element, problem, std::string(kPathAllowed));
@@ -529,8 +538,9 @@ class SceneReader {
                        quote(file), target.string()));
     }
     geometry::TriangleMesh mesh;
+    geometry::MeshLoadReport report;
     try {
-      mesh = geometry::loadMesh(target);
+      mesh = geometry::loadMesh(target, &report);
     } catch (const InputError& e) {
       cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.problem()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
@@ -538,6 +548,12 @@ class SceneReader {
       cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.what()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
     }
+    if (warnIfOpen) {
+      if (std::string open = geometry::openMeshWarning(geometry::countEdges(mesh)); !open.empty()) {
+        report.warnings.push_back(std::move(open));
+      }
+    }
+    for (const std::string& w : report.warnings) cx_.warn(line, element, fmt::format("mesh {}: {}", quote(file), w));
     return mesh;
   }
 
@@ -629,7 +645,7 @@ class SceneReader {
     if (hasGeometry) {
       const int line = c.lineOf("Geometry");
       const std::string element = label + "/Geometry";
-      body = loadGeometry(object.geometry, line, element);
+      body = loadGeometry(object.geometry, line, element, false);
       if (object.shape == ObjectShape::Mesh && object.isDynamic) {
         try {
           (void)geometry::meshMassProperties(body, object.mass, object.geometry);
@@ -836,7 +852,7 @@ class SceneReader {
                fmt::format("the scene makes {} particles (explicit positions plus fills), more "
                            "than the cap of {}",
                            count(), cap),
-               fmt::format("at most {} particles in all", cap));
+               fmt::format("at most {} particles in all; --max-particles raises the cap", cap));
     }
     for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
       total = saturatingAdd(total, objectBounds_[i]);
@@ -846,7 +862,7 @@ class SceneReader {
                            "(objects filled at their ParticleSize), more than the cap of {}",
                            count(), cap),
                fmt::format("at most {} particles in all: a larger ParticleSize, or fewer or "
-                           "smaller objects",
+                           "smaller objects; --max-particles raises the cap",
                            cap));
     }
   }
@@ -865,8 +881,59 @@ class SceneReader {
 
 }  // namespace
 
+namespace {
+
+constexpr std::string_view kWellFormed = "well-formed XML";
+
+std::string byteCount(std::uint64_t n) {
+  if (n >= (std::uint64_t{1} << 30) && n % (std::uint64_t{1} << 30) == 0) {
+    return fmt::format("{} GiB", n >> 30);
+  }
+  if (n >= (std::uint64_t{1} << 20) && n % (std::uint64_t{1} << 20) == 0) {
+    return fmt::format("{} MiB", n >> 20);
+  }
+  return fmt::format("{} bytes", n);
+}
+
+[[noreturn]] void refuseSize(const std::string& file, std::uint64_t size, std::uint64_t cap) {
+  throw InputError({file, 0, "XML"},
+                   fmt::format("the file is {} bytes, more than the cap of {}", size, byteCount(cap)),
+                   fmt::format("a scene file of at most {} ({} bytes)", byteCount(cap), cap));
+}
+
+// A parse that failed: a truncated file (the parser stopped at its end with elements
+// open) is said so, naming the innermost open element and its line.
+[[noreturn]] void refuseParse(const Context& cx, std::string_view text,
+                              const pugi::xml_parse_result& parsed, const XmlTextCheck& scan) {
+  const auto at = static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0));
+  const bool atEnd = trimSpace(text.substr(std::min(at, text.size()))).size() <= 1;
+  const auto lastLine = cx.lineAt(static_cast<std::ptrdiff_t>(text.size()) - 1);
+  const std::string allowed = fmt::format("{}: every element closed, ending with </Scene>", kWellFormed);
+  if (!scan.unfinished.empty()) {
+    cx.fail(lastLine, "XML",
+            fmt::format("the file ends inside {} (opened at line {}): it is truncated ({})",
+                        scan.unfinished, cx.lineAt(static_cast<std::ptrdiff_t>(scan.unfinishedOffset)),
+                        parsed.description()),
+            allowed);
+  }
+  if (atEnd && !scan.openAtEnd.empty()) {
+    const OpenElement& inner = scan.openAtEnd.back();
+    cx.fail(lastLine, "XML",
+            fmt::format("the file ends inside <{}> (opened at line {}): it is truncated or an "
+                        "element is not closed ({})",
+                        inner.name, cx.lineAt(static_cast<std::ptrdiff_t>(inner.offset)),
+                        parsed.description()),
+            allowed);
+  }
+  cx.fail(cx.lineAt(parsed.offset), "XML", fmt::format("not well-formed: {}", parsed.description()),
+          std::string(kWellFormed));
+}
+
+}  // namespace
+
 SceneDesc readSceneText(std::string_view text, const std::string& fileName,
                         const ReadOptions& options) {
+  if (text.size() > options.maxFileBytes) refuseSize(fileName, text.size(), options.maxFileBytes);
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
   std::error_code ec;
   std::filesystem::path base = std::filesystem::path(fileName).parent_path();
@@ -874,15 +941,18 @@ SceneDesc readSceneText(std::string_view text, const std::string& fileName,
   base = std::filesystem::absolute(base, ec).lexically_normal();
   if (ec) base = std::filesystem::path(fileName).parent_path();
   const Context cx(text, fileName, base, options);
+  // What pugixml lets through (a DTD, unknown entities, &#0;, control characters,
+  // invalid UTF-8, deep nesting) is refused before it parses.
+  const XmlTextCheck scan = checkXmlText(text);
+  if (!scan.problem.empty()) {
+    cx.fail(cx.lineAt(static_cast<std::ptrdiff_t>(scan.offset)), "XML", scan.problem, scan.allowed);
+  }
   pugi::xml_document doc;
   // parse_fragment keeps text outside the root as nodes (pugixml drops it otherwise);
   // SceneReader then insists on exactly one root element and no text around it.
   const pugi::xml_parse_result parsed = doc.load_buffer(
       text.data(), text.size(), pugi::parse_default | pugi::parse_fragment, pugi::encoding_utf8);
-  if (!parsed) {
-    cx.fail(cx.lineAt(parsed.offset), "XML", fmt::format("not well-formed: {}", parsed.description()),
-            "well-formed XML");
-  }
+  if (!parsed) refuseParse(cx, text, parsed, scan);
   return SceneReader(cx).read(doc);
 }
 
@@ -895,7 +965,16 @@ SceneDesc readSceneFile(const std::string& path, const ReadOptions& options) {
   if (!in) {
     throw IoError(fmt::format("cannot read scene file '{}': {}", path, std::strerror(errno)));
   }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The size is checked before anything is read (a regular file; a pipe is read up to
+  // one byte past the cap).
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > options.maxFileBytes) refuseSize(path, size, options.maxFileBytes);
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > options.maxFileBytes) refuseSize(path, text.size(), options.maxFileBytes);
+  }
   if (in.bad()) {
     throw IoError(fmt::format("cannot read scene file '{}': read error", path));
   }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scene/scene_desc.h"
 
@@ -20,6 +21,12 @@ struct ReadOptions {
   /// Most particles a scene may make (explicit positions, fills and objects, counted without
   /// generating anything); a bigger scene is refused before anything is allocated.
   std::uint64_t maxParticles = 20'000'000;
+  /// Largest scene file (or text) read, in bytes; a bigger one is refused before it is
+  /// read. 1 GiB holds the explicit positions of some 40 million particles.
+  std::uint64_t maxFileBytes = std::uint64_t{1} << 30;
+  /// When set, receives one line per warning (a mesh repaired on loading, a mesh fill of
+  /// a mesh that is not closed, non-manifold edges): `<file>:<line>: <element>: <text>`.
+  std::vector<std::string>* warnings = nullptr;
 };
 
 /// Reads and validates the scene file at path. Throws IoError if it cannot be read,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/xml_checks.h"
 #include "scene_test_util.h"
 
 namespace softsub::scene::rules {
@@ -93,6 +94,52 @@ inline std::vector<Row> rows() {
        "unknown attribute 'units'", "version"},
       {"UnknownChildAttribute", S("<Simulation fast=\"yes\"><!--E-->\n</Simulation>"), "Simulation",
        "unknown attribute 'fast'", "no attributes"},
+      // --- what pugixml lets through (src/scene/xml_checks.cpp) ------------------------
+      {"Doctype", "<!DOCTYPE Scene><!--E-->\n<Scene version=\"1\"/>\n", "XML", "a DOCTYPE declaration",
+       "no DOCTYPE or entity declarations"},
+      {"DoctypeWithEntities",
+       "<?xml version=\"1.0\"?>\n<!DOCTYPE Scene [<!ENTITY big \"x\">]><!--E-->\n<Scene version=\"1\"/>\n",
+       "XML", "a DOCTYPE declaration", "no DOCTYPE"},
+      {"EntityDeclaration", "<!ENTITY big \"x\"><!--E-->\n<Scene version=\"1\"/>\n", "XML",
+       "an entity declaration", "no DOCTYPE or entity declarations"},
+      {"UnknownEntityReference", F("<Viscosity>&big;</Viscosity><!--E-->"), "XML",
+       "the entity reference '&big;': only the five predefined entities exist", "&lt; &gt; &amp;"},
+      {"BareAmpersand", F("<Viscosity>1 & 2</Viscosity><!--E-->"), "XML",
+       "a '&' that starts no entity or character reference", "&amp;"},
+      {"NulCharacterReference", F("<Viscosity>1&#0;</Viscosity><!--E-->"), "XML",
+       "a NUL character reference '&#0;'", "of a character XML allows"},
+      {"NulHexCharacterReference", F("<Viscosity>&#x0;1</Viscosity><!--E-->"), "XML",
+       "a NUL character reference '&#x0;'", ""},
+      {"ControlCharacterReference", F("<Viscosity>2&#1;</Viscosity><!--E-->"), "XML",
+       "the character reference '&#1;' to U+0001, which XML does not allow", ""},
+      {"CharacterReferenceBeyondUnicode", F("<Viscosity>&#x110000;</Viscosity><!--E-->"), "XML",
+       "'&#x110000;' is not a character reference", ""},
+      {"RawNul", F(std::string("<Viscosity>1") + '\0' + "</Viscosity><!--E-->"), "XML",
+       "a NUL character (byte 0)", "no NUL"},
+      {"RawControlCharacter", F("<Viscosity>1\x01</Viscosity><!--E-->"), "XML",
+       "a control character U+0001", "no control character but tab"},
+      {"InvalidUtf8", F("<Viscosity>1\xFF</Viscosity><!--E-->"), "XML", "invalid UTF-8 (byte 0xFF)",
+       "UTF-8 text"},
+      {"Utf16Surrogate", F("<Viscosity>1\xED\xA0\x80</Viscosity><!--E-->"), "XML",
+       "invalid UTF-8 (byte 0xED)", ""},
+      {"NonCharacterFFFF", F("<Viscosity>1\xEF\xBF\xBF</Viscosity><!--E-->"), "XML",
+       "the character U+FFFF, which XML does not allow", ""},
+      {"TooDeep",
+       "<Scene version=\"1\">" + [] {
+         std::string s;
+         for (std::size_t i = 1; i < kMaxXmlDepth; ++i) s += "<a>";
+         return s;
+       }() + "\n<b><!--E-->\n</Scene>\n",
+       "XML", "<b> is nested 33 elements deep", "elements nested at most 32 deep"},
+      {"Truncated", "<Scene version=\"1\">\n<Fluid>\n<Name>w</Name>\n<Particles>0 0 0<!--E-->", "XML",
+       "the file ends inside <Particles> (opened at line 4): it is truncated",
+       "every element closed"},
+      {"TruncatedInsideATag", "<Scene version=\"1\">\n<Fluid>\n<Name>w</Name>\n<Fill>\n<Shape a=\"<!--E-->", "XML",
+       "the file ends inside <Shape> (opened at line 5)", ""},
+      {"ProcessingInstructionAfterRoot", "<Scene version=\"1\"/>\n<?render fast?><!--E-->\n", "XML",
+       "a processing instruction after the root element", "nothing but comments"},
+      {"CdataAfterRoot", "<Scene version=\"1\"></Scene>\n<![CDATA[x]]><!--E-->\n", "XML",
+       "a CDATA section after the root element", ""},
       // --- structure -------------------------------------------------------------------
       {"UnknownTopElement", S("<Simulaton/><!--E-->"), "Simulaton",
        "unknown element <Simulaton> (did you mean <Simulation>?)",
@@ -349,7 +396,7 @@ inline std::vector<Row> rows() {
       {"ObjectNameWithBackslash", O("<Name>a\\b</Name><!--E-->\n<Shape>sphere</Shape><Size>1</Size>"),
        "Object[1]/Name", "is not a valid object name", "without '/', '\\' or control characters"},
       {"ObjectNameWithControlCharacter",
-       O("<Name>a&#1;b</Name><!--E-->\n<Shape>sphere</Shape><Size>1</Size>"), "Object[1]/Name",
+       O("<Name>a&#x7F;b</Name><!--E-->\n<Shape>sphere</Shape><Size>1</Size>"), "Object[1]/Name",
        "is not a valid object name", "control characters"},
       {"ObjectNameEmpty", O("<Name> </Name><!--E-->\n<Shape>sphere</Shape><Size>1</Size>"),
        "Object[1]/Name", "the value is empty", ""},
