@@ -144,9 +144,11 @@ def _collect(context, name):
         used_files.add(cand.lower())
         return f"{name}Geo/{cand}.obj"
 
-    objs = sorted(scene.objects, key=lambda o: o.name)
-    fills = [o for o in objs if o.softsub_fill.enabled]
-    for obj in objs:
+    # scene order: the order marks were made (or the imported scene's), then names
+    fluids = sorted((o for o in scene.objects if o.softsub_fluid.enabled), key=lambda o: (o.softsub_fluid.order, o.name))
+    fills = sorted((o for o in scene.objects if o.softsub_fill.enabled), key=lambda o: (o.softsub_fill.order, o.name))
+    bodies = sorted((o for o in scene.objects if o.softsub_body.enabled), key=lambda o: (o.softsub_body.order, o.name))
+    for obj in fluids:
         fp = obj.softsub_fluid
         if not fp.enabled or obj.softsub_cache.kind != "NONE":
             continue
@@ -200,7 +202,7 @@ def _collect(context, name):
             raise SceneError(f"{where}: no particles: give the object points, fill a mesh with particles, or "
                              "add a fill volume")
         model["fluids"].append(f)
-    for obj in objs:
+    for obj in bodies:
         bp = obj.softsub_body
         if not bp.enabled or obj.softsub_cache.kind not in ("NONE", "BODY"):
             continue
@@ -298,6 +300,11 @@ def export(context):
 
 
 # ---------------------------------------------------------------- import of a .scene
+
+def next_order(group):
+    """One more than the highest order of the marked objects of that kind."""
+    return 1 + max((getattr(o, group).order for o in bpy.data.objects if getattr(o, group).enabled), default=0)
+
 
 def unit_sphere(segments=32, rings=16):
     """A UV sphere of radius 1 whose bounding box is exactly [-1, 1] on every axis."""
@@ -426,6 +433,7 @@ def import_scene(context, path):
         obj = new_mesh_object(f["Name"], [axes.to_blender(p) for p in f["Particles"]], [], coll)
         fp = obj.softsub_fluid
         fp.enabled = True
+        fp.order = next_order("softsub_fluid")
         fp.interaction_distance, fp.amplitude = f["InteractionDistance"], f["Amplitude"]
         fp.finite_distance, fp.minimum_force = f["FiniteDistance"], f["MinimumForce"]
         fp.maximum_force, fp.viscosity = f["MaximumForce"], f["Viscosity"]
@@ -451,6 +459,7 @@ def import_scene(context, path):
                 fo = new_mesh_object(fname, v, fc, coll)
                 fo.softsub_fill.surface = fill["Surface"]
             fo.softsub_fill.enabled = True
+            fo.softsub_fill.order = next_order("softsub_fill")
             fo.softsub_fill.fluid = obj
             fo.softsub_fill.shape = fill["Shape"].upper()
             fo.softsub_fill.spacing = fill["Spacing"]
@@ -468,6 +477,7 @@ def import_scene(context, path):
         obj.scale = (o["UniformScale"],) * 3
         bp = obj.softsub_body
         bp.enabled = True
+        bp.order = next_order("softsub_body")
         bp.is_dynamic, bp.mass = o["IsDynamic"], o["Mass"]
         bp.normal_attenuation, bp.tangent_attenuation = o["NormalAttenuation"], o["TangentAttenuation"]
         bp.initial_linear_velocity = axes.to_blender(o["InitialLinearVelocity"])

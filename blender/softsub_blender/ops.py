@@ -39,6 +39,8 @@ class SOFTSUB_OT_make_body(bpy.types.Operator):
             self.report({"ERROR"}, "select one or more meshes")
             return {"CANCELLED"}
         for o in objs:
+            if not o.softsub_body.enabled:
+                o.softsub_body.order = bl_scene.next_order("softsub_body")
             o.softsub_body.enabled = True
             o.softsub_body.is_dynamic = self.dynamic
             o.softsub_fluid.enabled = False
@@ -60,6 +62,8 @@ class SOFTSUB_OT_make_substance(bpy.types.Operator):
             return {"CANCELLED"}
         bad = [o.name for o in objs if not FLUID_NAME.match(o.name)]
         for o in objs:
+            if not o.softsub_fluid.enabled:
+                o.softsub_fluid.order = bl_scene.next_order("softsub_fluid")
             o.softsub_fluid.enabled = True
             o.softsub_body.enabled = False
             o.softsub_fill.enabled = False
@@ -132,6 +136,7 @@ class SOFTSUB_OT_fill_mesh(bpy.types.Operator):
         obj = bpy.data.objects.new(name, mesh)
         (src.users_collection[0] if src.users_collection else context.scene.collection).objects.link(obj)
         fp = obj.softsub_fluid
+        fp.order = bl_scene.next_order("softsub_fluid")
         fp.enabled = True
         # the seed's proportions for a lattice of this step (as `softsub fill --scene-snippet`)
         fp.particle_size = self.spacing
@@ -177,6 +182,8 @@ class SOFTSUB_OT_make_fill(bpy.types.Operator):
             return {"CANCELLED"}
         for o in objs:
             f = o.softsub_fill
+            if not f.enabled:
+                f.order = bl_scene.next_order("softsub_fill")
             f.enabled, f.fluid, f.shape, f.spacing = True, fluid, self.shape, self.spacing
             o.softsub_body.enabled = False
             o.softsub_fluid.enabled = False

@@ -158,6 +158,9 @@ class SoftsubSettings(bpy.types.PropertyGroup):
 class SoftsubBody(bpy.types.PropertyGroup):
     enabled: BoolProperty(name="Rigid body", default=False,
                           description="This mesh is a softsub rigid body (<Object>)")
+    order: IntProperty(name="Order", default=0, min=0,
+                       description="Position in the scene file (softsub keeps the scene's order of fluids, fills "
+                                   "and bodies: it numbers output and default names)")
     is_dynamic: bprop("Object", "IsDynamic", name="Dynamic")
     mass: fprop("Object", "Mass")
     normal_attenuation: fprop("Object", "NormalAttenuation", name="Restitution")
@@ -186,6 +189,9 @@ class SoftsubBody(bpy.types.PropertyGroup):
 class SoftsubFluid(bpy.types.PropertyGroup):
     enabled: BoolProperty(name="Substance", default=False,
                           description="This object's points (mesh vertices or point cloud) are a softsub fluid")
+    order: IntProperty(name="Order", default=0, min=0,
+                       description="Position in the scene file (softsub keeps the scene's order of fluids, fills "
+                                   "and bodies: it numbers output and default names)")
     interaction_distance: fprop("Fluid", "InteractionDistance")
     amplitude: fprop("Fluid", "Amplitude")
     finite_distance: fprop("Fluid", "FiniteDistance")
@@ -206,6 +212,9 @@ def _fluid_poll(self, obj):
 class SoftsubFill(bpy.types.PropertyGroup):
     enabled: BoolProperty(name="Fill volume", default=False,
                           description="This mesh is a <Fill> of a substance: softsub fills it when the scene is read")
+    order: IntProperty(name="Order", default=0, min=0,
+                       description="Position in the scene file (softsub keeps the scene's order of fluids, fills "
+                                   "and bodies: it numbers output and default names)")
     fluid: PointerProperty(name="Substance", type=bpy.types.Object, poll=_fluid_poll,
                            description="The substance the fill's particles belong to")
     shape: EnumProperty(name="Shape", default="MESH", description=_tip("Fill", "Shape"), items=[

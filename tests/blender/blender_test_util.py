@@ -15,7 +15,9 @@ def args():
     for k in ("softsub", "zip", "work"):
         if k not in out:
             raise SystemExit(f"usage: blender -b --python SCRIPT -- --softsub EXE --zip ZIP --work DIR (missing --{k})")
-    os.makedirs(out["work"], exist_ok=True)
+    import shutil
+    shutil.rmtree(out["work"], ignore_errors=True)  # each run starts from nothing
+    os.makedirs(out["work"])
     return out
 
 
