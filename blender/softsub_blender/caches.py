@@ -146,6 +146,50 @@ def write_obj(path, name, verts, tris, num):
     os.replace(tmp, path)
 
 
+def read_manifest(path):
+    """A frame's manifest -> (frame, [(size, relative path)]), or None if it is cut."""
+    try:
+        with open(path, "r", encoding="utf-8") as f:
+            lines = f.read().splitlines()
+    except OSError:
+        return None
+    if not lines or not lines[0].startswith("softsub manifest") or "end" not in lines:
+        return None
+    frame, files = None, []
+    for line in lines:
+        w = line.split(" ", 2)
+        if w[0] == "frame" and len(w) == 2:
+            frame = int(w[1])
+        elif w[0] == "file" and len(w) == 3:
+            files.append((int(w[1]), w[2]))
+    return (frame, files) if frame is not None else None
+
+
+def complete_frames(sim_dir, scene):
+    """Frames 0..N of the folder's last run that are complete (manifest and every file
+    it lists at its size), or None when the folder has no manifests (not softsub's run
+    journal: every .sim counts)."""
+    mdir = os.path.join(sim_dir, "manifest")
+    if not os.path.isdir(mdir):
+        return None
+    pat = re.compile(r"^" + re.escape(scene) + r"\.(\d{4,})\.manifest$")
+    found = {int(m.group(1)): os.path.join(mdir, f) for f in os.listdir(mdir) for m in [pat.match(f)] if m}
+    if not found:
+        return None
+    done = set()
+    f = 0
+    while f in found:
+        man = read_manifest(found[f])
+        if man is None or man[0] != f:
+            break
+        if any(not os.path.isfile(os.path.join(sim_dir, rel)) or os.path.getsize(os.path.join(sim_dir, rel)) != size
+               for size, rel in man[1]):
+            break
+        done.add(f)
+        f += 1
+    return done
+
+
 def scan_sim_folder(sim_dir, scene_name=None):
     """What a run's output folder holds: {"scene": name, "frames": sorted frame numbers
     with a .sim file, "sim": {frame: path}, "ply": {frame: path}, "mesh": {fluid:
@@ -164,6 +208,13 @@ def scan_sim_folder(sim_dir, scene_name=None):
     if len(sims) > 1:
         raise CacheError(f"'{sim_dir}' holds frames of several scenes ({', '.join(sorted(sims))}): choose one")
     scene, frames = next(iter(sims.items()))
+    complete = complete_frames(sim_dir, scene)
+    if complete is not None:
+        # softsub's manifests say which frames belong to the last run and are whole; a
+        # .sim left by an earlier, longer run (a rerun that was stopped) is not one of them
+        frames = {f: p for f, p in frames.items() if f in complete}
+        if not frames:
+            raise CacheError(f"'{sim_dir}': no complete frame of '{scene}' (see manifest/)")
     order = sorted(frames)
     if order != list(range(order[0], order[0] + len(order))) or order[0] != 0:
         missing = sorted(set(range(0, order[-1] + 1)) - set(order))
@@ -174,12 +225,13 @@ def scan_sim_folder(sim_dir, scene_name=None):
     for f in os.listdir(ply_dir) if os.path.isdir(ply_dir) else []:
         m = re.match(r"^" + re.escape(scene) + r"\.(\d{4,})\.ply$", f)
         if m:
-            out["ply"][int(m.group(1))] = os.path.join(ply_dir, f)
+            if int(m.group(1)) in frames:
+                out["ply"][int(m.group(1))] = os.path.join(ply_dir, f)
     for kind in ("mesh", "vdb"):
         d = os.path.join(sim_dir, kind)
         ext = ".obj" if kind == "mesh" else ".vdb"
         for f in os.listdir(d) if os.path.isdir(d) else []:
             m = re.match(r"^(.+)\.(\d{4,})" + re.escape(ext) + "$", f)
-            if m:
+            if m and int(m.group(2)) in frames:
                 out[kind].setdefault(m.group(1), {})[int(m.group(2))] = os.path.join(d, f)
     return out

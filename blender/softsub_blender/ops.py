@@ -246,6 +246,7 @@ class SOFTSUB_OT_run(bpy.types.Operator):
     def _finish(self, context):
         s = context.scene.softsub
         s.running = False
+        s.run_frame = self.runner.frame
         _ACTIVE["runner"] = None
         if context.workspace:
             context.workspace.status_text_set(None)

@@ -186,6 +186,14 @@ class SoftsubBody(bpy.types.PropertyGroup):
                                  description=_tip("Object", "ParticleSize", "; 0 here: that default"))
 
 
+def _update_look(self, context):
+    """Colour and particle size changes show at once on the substance's points."""
+    from . import display
+    obj = self.id_data
+    if isinstance(obj, bpy.types.Object) and obj.modifiers.get(display.GROUP):
+        display.show_as_points(obj, self.particle_size / 2, tuple(self.colour))
+
+
 class SoftsubFluid(bpy.types.PropertyGroup):
     enabled: BoolProperty(name="Substance", default=False,
                           description="This object's points (mesh vertices or point cloud) are a softsub fluid")
@@ -198,11 +206,12 @@ class SoftsubFluid(bpy.types.PropertyGroup):
     minimum_force: fprop("Fluid", "MinimumForce")
     maximum_force: fprop("Fluid", "MaximumForce")
     viscosity: fprop("Fluid", "Viscosity")
-    particle_size: fprop("Fluid", "ParticleSize")
+    particle_size: fprop("Fluid", "ParticleSize", update=_update_look)
     particle_mass: fprop("Fluid", "ParticleMass")
     initial_speed: vprop("Fluid", "InitialSpeed", name="Initial velocity", subtype="VELOCITY")
     colour: FloatVectorProperty(name="Colour", subtype="COLOR", size=3, min=0.0, max=1.0,
-                                default=schema.default("Fluid", "Colour"), description=_tip("Fluid", "Colour"))
+                                default=schema.default("Fluid", "Colour"), description=_tip("Fluid", "Colour"),
+                                update=_update_look)
 
 
 def _fluid_poll(self, obj):

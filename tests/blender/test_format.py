@@ -234,6 +234,21 @@ class CacheTest(unittest.TestCase):
             caches.scan_sim_folder(ARGS.work)
 
 
+    def test_stale_frames_of_an_earlier_run_are_not_frames(self):
+        d = os.path.join(ARGS.work, "rerunSim")
+        scene = os.path.join(ARGS.source, "examples", "interactions.scene")
+        self.assertEqual(softsub("run", scene, "--frames", "5", "--out", d).returncode, 0)
+        self.assertEqual(softsub("run", scene, "--frames", "2", "--out", d).returncode, 0)
+        self.assertTrue(os.path.exists(os.path.join(d, "interactions.0004.sim")))  # left by the first run
+        scan = caches.scan_sim_folder(d)
+        self.assertEqual(scan["frames"], [0, 1, 2])
+        self.assertEqual(sorted(scan["ply"]), [0, 1, 2])
+        # a frame whose listed file lost bytes is not complete
+        with open(os.path.join(d, "ply", "interactions.0002.ply"), "ab") as f:
+            f.write(b"x")
+        self.assertEqual(caches.scan_sim_folder(d)["frames"], [0, 1])
+
+
 class RunnerTest(unittest.TestCase):
     def test_progress_and_stop(self):
         out = os.path.join(ARGS.work, "stopSim")
