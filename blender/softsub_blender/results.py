@@ -126,9 +126,25 @@ def _key_channels(action, path, group, frames, values_per_channel):
 
 
 def import_results(context, sim_dir, scene_name=None):
-    """Imports a results folder (see the module's docstring). Returns a summary line."""
+    """Imports a results folder (see the module's docstring). Returns a summary line.
+    Everything is read and checked first; should Blender still fail half-way, what this
+    call made is removed again before the error is raised."""
     sim_dir = os.path.abspath(sim_dir)
     data = read_folder(sim_dir, scene_name)  # everything checked before anything changes
+    before = {"objects": set(bpy.data.objects), "meshes": set(bpy.data.meshes), "actions": set(bpy.data.actions),
+              "volumes": set(bpy.data.volumes)}
+    try:
+        return _create(context, sim_dir, data)
+    except Exception as e:
+        for kind in ("objects", "actions", "meshes", "volumes"):
+            coll = getattr(bpy.data, kind)
+            for item in set(coll) - before[kind]:
+                coll.remove(item)
+        clear_results(sim_dir)
+        raise CacheError(f"import of '{sim_dir}' failed, nothing imported: {e}") from e
+
+
+def _create(context, sim_dir, data):
     scene = context.scene
     scan = data["scan"]
     offset = scene.frame_start
@@ -206,8 +222,8 @@ def import_results(context, sim_dir, scene_name=None):
         fp = fluid_params.get(name)
         mesh.materials.append(display.fluid_material(f"softsub {name}", fp["Colour"] if fp else (0.8, 0.5, 0.2)))
     for name, files in scan["vdb"].items():
-        vol = bpy.data.volumes.load(files[scan["frames"][0]])
-        vol.name = f"{name}_vdb"
+        vol = bpy.data.volumes.new(f"{name}_vdb")
+        vol.filepath = files[scan["frames"][0]]
         vol.is_sequence = True
         vol.frame_duration = len(scan["frames"])
         vol.frame_start = offset

@@ -115,6 +115,28 @@ for rel in ("examples/interactions.scene", "examples/goo-torus.scene", "examples
             "tests/data/scenes/good/objects.scene", "tests/data/scenes/good/two_fluids.scene"):
     roundtrip(os.path.basename(rel)[:-6], os.path.join(repo, rel))
 
+# surfaces: an imported example run with --formats ...,mesh,vdb comes back as a mesh
+# sequence and a VDB volume sequence that follow the frames
+reset()
+check(bpy.ops.softsub.import_scene(filepath=os.path.join(repo, "examples", "honey-drop.scene")) == {"FINISHED"},
+      "import honey-drop")
+s = bpy.context.scene.softsub
+s.scene_path = os.path.join(work, "surf", "hd.scene")
+s.frames, s.write_mesh, s.write_vdb = 3, True, True
+bpy.context.scene.frame_start = 10
+check(bpy.ops.softsub.run(wait=True) == {"FINISHED"}, "run with surfaces")
+surf, vol = bpy.data.objects.get("honey_surface"), bpy.data.objects.get("honey_vdb")
+check(surf is not None and vol is not None and vol.type == "VOLUME", "surfaces not imported")
+for f in range(4):
+    bpy.context.scene.frame_set(10 + f)
+    verts, faces = caches.read_obj(os.path.join(work, "surf", "hdSim", "mesh", f"honey.{f:04d}.obj"))
+    check(len(surf.data.vertices) == len(verts) and len(surf.data.polygons) == len(faces) > 100,
+          f"surface at frame {f}: {len(surf.data.vertices)} vertices, the OBJ has {len(verts)}")
+    check(abs(surf.data.vertices[0].co.z - verts[0][1]) < 1e-6, f"surface at frame {f}: not in Blender's axes")
+    vol.data.grids.load()
+    check(os.path.basename(vol.data.grids.frame_filepath) == f"honey.{f:04d}.vdb" and len(vol.data.grids) == 1
+          and vol.data.grids[0].name == "honey", f"volume at frame {f}: {vol.data.grids.frame_filepath}")
+
 # a bad scene is refused with the reason and creates nothing
 reset()
 bad = os.path.join(work, "bad.scene")
