@@ -12,6 +12,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev  # tests and benchmarks
   xvfb xauth  # the viewer's test runs it in a virtual X display
   ffmpeg  # 'softsub render --movie' (optional for users; tested)
+  blender python3  # the Blender add-on's tests run it headless (blender/, tests/blender/)
   libopenvdb-dev libtbb-dev libboost-dev  # surfaces (level sets, meshing, .vdb); OpenVDB's headers need Boost's but the package does not depend on it
   clang libclang-rt-14-dev  # the libFuzzer targets (scripts/test.sh --fuzz); the runtime is only "recommended" by clang
 )
