@@ -13,29 +13,15 @@
 #include "scene/reader.h"
 #include "solver/checkpoint.h"
 #include "solver/simulation.h"
+#include "support/state_bytes.h"
 
 namespace softsub::solver {
 namespace {
 
 std::string example(const std::string& name) { return std::string(SOFTSUB_SOURCE_DIR) + "/examples/" + name; }
 
-// The whole store in slot order and every body's state, as raw bytes.
-std::string stateBytes(const Simulation& sim) {
-  std::string out;
-  const ParticleStore& p = sim.state().particles;
-  for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz, &p.fx, &p.fy, &p.fz})
-    out.append(reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float));
-  out.append(reinterpret_cast<const char*>(p.id.data()), p.id.size() * sizeof(std::uint32_t));
-  for (const rigid::BodyState& b : sim.state().bodies) {
-    const double v[13] = {b.position.x(),        b.position.y(),        b.position.z(),
-                          b.velocity.x(),        b.velocity.y(),        b.velocity.z(),
-                          b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z(),
-                          b.orientation.w(),     b.orientation.x(),     b.orientation.y(),
-                          b.orientation.z()};
-    out.append(reinterpret_cast<const char*>(v), sizeof v);
-  }
-  return out;
-}
+// The whole store in slot order (forces too) and every body's state, as raw bytes.
+std::vector<std::uint8_t> stateBytes(const Simulation& sim) { return scenarios::stateBytes(sim, true); }
 
 struct Case {
   std::string scene;
@@ -113,7 +99,7 @@ class Refuse : public ::testing::Test {
   [[nodiscard]] std::string problemOf(const std::string& bytes, std::uint64_t fingerprint = 7) {
     scene::Compiled c = scene::compile(scene::readSceneFile(example("two-fluids.scene")));
     Simulation sim(model_, std::move(c.state));
-    const std::string before = stateBytes(sim);
+    const auto before = stateBytes(sim);
     try {
       restoreCheckpoint(sim, bytes, fingerprint, "run/x.state");
     } catch (const InputError& e) {

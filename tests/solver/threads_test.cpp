@@ -13,33 +13,14 @@
 #include "scene/compile.h"
 #include "scene/reader.h"
 #include "solver/simulation.h"
+#include "support/state_bytes.h"
 
 namespace softsub::solver {
 namespace {
 
 std::string example(const std::string& name) { return std::string(SOFTSUB_SOURCE_DIR) + "/examples/" + name; }
 
-// Every particle's position and velocity and every body's state, as raw bytes.
-std::vector<std::uint8_t> stateBytes(const Simulation& sim) {
-  std::vector<std::uint8_t> out;
-  const ParticleStore& p = sim.state().particles;
-  for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz}) {
-    const auto* b = reinterpret_cast<const std::uint8_t*>(a->data());
-    out.insert(out.end(), b, b + a->size() * sizeof(float));
-  }
-  const auto* ids = reinterpret_cast<const std::uint8_t*>(p.id.data());
-  out.insert(out.end(), ids, ids + p.id.size() * sizeof(std::uint32_t));
-  for (const rigid::BodyState& b : sim.state().bodies) {
-    const double v[13] = {b.position.x(),        b.position.y(),        b.position.z(),
-                          b.velocity.x(),        b.velocity.y(),        b.velocity.z(),
-                          b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z(),
-                          b.orientation.w(),     b.orientation.x(),     b.orientation.y(),
-                          b.orientation.z()};
-    const auto* raw = reinterpret_cast<const std::uint8_t*>(v);
-    out.insert(out.end(), raw, raw + sizeof v);
-  }
-  return out;
-}
+using scenarios::stateBytes;
 
 // The states after each of `substeps` substeps of `scene`, on `threads` threads.
 std::vector<std::vector<std::uint8_t>> trajectory(const std::string& scene, int substeps, std::size_t threads) {

@@ -1,0 +1,35 @@
+#pragma once
+// A simulation's state as raw bytes, for bitwise comparisons (threads, checkpoints) and
+// pinned hashes: every particle's position and velocity (and with `withForces` its
+// force) in slot order, the ids, then every body's position, velocity, angular momentum
+// and orientation (w, x, y, z).
+#include <cstdint>
+#include <vector>
+
+#include "solver/simulation.h"
+
+namespace softsub::scenarios {
+
+inline std::vector<std::uint8_t> stateBytes(const solver::Simulation& sim, bool withForces = false) {
+  std::vector<std::uint8_t> out;
+  const auto append = [&out](const void* data, std::size_t bytes) {
+    const auto* b = static_cast<const std::uint8_t*>(data);
+    out.insert(out.end(), b, b + bytes);
+  };
+  const ParticleStore& p = sim.state().particles;
+  for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz}) append(a->data(), a->size() * 4);
+  if (withForces)
+    for (const std::vector<float>* a : {&p.fx, &p.fy, &p.fz}) append(a->data(), a->size() * 4);
+  append(p.id.data(), p.id.size() * sizeof(std::uint32_t));
+  for (const rigid::BodyState& b : sim.state().bodies) {
+    const double v[13] = {b.position.x(),        b.position.y(),        b.position.z(),
+                          b.velocity.x(),        b.velocity.y(),        b.velocity.z(),
+                          b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z(),
+                          b.orientation.w(),     b.orientation.x(),     b.orientation.y(),
+                          b.orientation.z()};
+    append(v, sizeof v);
+  }
+  return out;
+}
+
+}  // namespace softsub::scenarios
