@@ -11,13 +11,20 @@
 namespace softsub::app {
 
 CLI::App* addInfoCommand(CLI::App& root, InfoOptions& o) {
-  CLI::App* info = root.add_subcommand("info", "Summarise a .scene, .sim, .pdc or .ply file");
-  info->add_option("FILE", o.file, "A .scene, .sim, .pdc or .ply file (the extension says which)")
+  CLI::App* info = root.add_subcommand(
+      "info", "Summarise a .scene, .sim, .pdc, .ply, .manifest or .state file, or a run's output folder");
+  info->add_option("FILE", o.file,
+                   "A .scene, .sim, .pdc, .ply, .manifest or .state file (the extension says which), or an "
+                   "output folder: which frames are complete and where --resume would continue")
       ->required();
   return info;
 }
 
 int infoCommand(const InfoOptions& o) {
+  if (std::filesystem::is_directory(o.file)) {
+    printRunFolderInfo(o.file);
+    return static_cast<int>(ExitCode::Ok);
+  }
   std::string ext = std::filesystem::path(o.file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -29,11 +36,15 @@ int infoCommand(const InfoOptions& o) {
     printPdcInfo(o.file);
   } else if (ext == ".ply") {
     printPlyInfo(o.file);
+  } else if (ext == ".manifest") {
+    printManifestInfo(o.file);
+  } else if (ext == ".state") {
+    printCheckpointInfo(o.file);
   } else {
     throw InputError({o.file, 0, {}},
                      ext.empty() ? std::string("no file extension")
                                  : "unknown file extension '" + ext + "'",
-                     ".scene, .sim, .pdc, .ply");
+                     ".scene, .sim, .pdc, .ply, .manifest, .state, or a folder");
   }
   return static_cast<int>(ExitCode::Ok);
 }

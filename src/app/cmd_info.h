@@ -1,5 +1,6 @@
 #pragma once
-/// `softsub info FILE`: a summary of a .scene, .sim, .pdc or .ply file.
+/// `softsub info FILE`: a summary of a .scene, .sim, .pdc, .ply, .manifest or .state
+/// file, or of a run's output folder.
 #include <string>
 
 namespace CLI {
@@ -28,5 +29,13 @@ void printSimInfo(const std::string& path);
 void printPdcInfo(const std::string& path);
 /// Prints a summary of a .ply file (format, properties, per fluid counts, bounds).
 void printPlyInfo(const std::string& path);
+/// Prints a frame's manifest: frame, substeps, run fingerprint, files, and whether the
+/// frame is complete (every listed file there at its size).
+void printManifestInfo(const std::string& path);
+/// Prints a checkpoint's header: frame, particles, bodies, run fingerprint.
+void printCheckpointInfo(const std::string& path);
+/// Prints, per scene name with manifests in the folder, which frames are complete, the
+/// checkpoints, and where `run --resume` would continue.
+void printRunFolderInfo(const std::string& dir);
 
 }  // namespace softsub::app

@@ -1,14 +1,22 @@
-// `softsub info` on cache files: .sim, .pdc and .ply.
+// `softsub info` on cache files (.sim, .pdc, .ply), a run's journal (.manifest, .state)
+// and output folders.
+#include <algorithm>
 #include <array>
+#include <filesystem>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
+#include "cache/atomic_file.h"
+#include "cache/manifest.h"
 #include "cache/pdc_format.h"
 #include "cache/ply_format.h"
 #include "cache/sim_format.h"
 #include "cmd_info.h"
 #include "core/aabb.h"
+#include "core/error.h"
+#include "solver/checkpoint.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -89,6 +97,108 @@ void printPlyInfo(const std::string& path) {
       fmt::print("  fluid {} {}: {} particles\n", index, named ? ply.fluidNames[static_cast<std::size_t>(index)] : "",
                  groupThousands(n));
     }
+  }
+}
+
+void printManifestInfo(const std::string& path) {
+  const cache::Manifest m = cache::decodeManifest(cache::readFileBytes(path), path);
+  // The output folder is the manifest's folder's parent.
+  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path().parent_path();
+  std::uint64_t bytes = 0;
+  for (const cache::ManifestEntry& e : m.files) bytes += e.bytes;
+  const std::string why = cache::incompleteReason(dir, m, false);
+  fmt::print("manifest {}: frame {}, {} substeps, run {:016x}, {} files, {} bytes: {}\n", path, m.frame, m.substeps,
+             m.fingerprint, m.files.size(), groupThousands(bytes), why.empty() ? "complete" : "incomplete, " + why);
+  for (const cache::ManifestEntry& e : m.files) fmt::print("  {} ({} bytes)\n", e.path, groupThousands(e.bytes));
+  if (m.checkpoint) {
+    const std::string ck = cache::incompleteReason(dir, cache::Manifest{m.frame, m.substeps, m.fingerprint, {}, m.checkpoint}, true);
+    const bool removed = !std::filesystem::exists(dir / m.checkpoint->path);
+    fmt::print("  checkpoint {} ({} bytes){}\n", m.checkpoint->path, groupThousands(m.checkpoint->bytes),
+               ck.empty() ? "" : removed ? ": removed since (a run keeps its two newest)" : ": " + ck);
+  }
+}
+
+void printCheckpointInfo(const std::string& path) {
+  const solver::CheckpointInfo c = solver::checkpointInfo(cache::readFileBytes(path), path);
+  fmt::print("checkpoint {}: frame {}, {} particles, {} objects, run {:016x}, intact\n", path, c.frame,
+             groupThousands(c.particles), c.bodies, c.fingerprint);
+}
+
+void printRunFolderInfo(const std::string& dirText) {
+  const std::filesystem::path dir(dirText);
+  // Scene names: manifest/<name>.NNNN.manifest.
+  std::set<std::string> names;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir / "manifest", ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string file = it->path().filename().string();
+    const std::string suffix = ".manifest";
+    if (file.size() <= suffix.size() || file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string stem = file.substr(0, file.size() - suffix.size());
+    const auto dot = stem.rfind('.');
+    if (dot != std::string::npos && dot > 0) names.insert(stem.substr(0, dot));
+  }
+  if (names.empty())
+    throw InputError({dirText, 0, {}}, "no manifest/ with frame manifests: not a softsub run's output folder",
+                     "a folder `softsub run` wrote (it has manifest/<scene>.NNNN.manifest files)");
+  for (const std::string& name : names) {
+    const std::vector<std::int64_t> frames = cache::manifestFrames(dir, name);
+    if (frames.empty()) continue;
+    // Frames 0, 1, ... in a row whose manifests read and whose files are all there.
+    std::int64_t complete = -1;
+    std::string stop;
+    int fewest = 0, most = 0;
+    std::uint64_t run = 0;
+    for (const std::int64_t f : frames) {
+      if (f != complete + 1) {
+        stop = fmt::format("frame {} has no manifest", complete + 1);
+        break;
+      }
+      const std::filesystem::path p = cache::manifestPath(dir, name, f);
+      cache::Manifest m;
+      try {
+        m = cache::decodeManifest(cache::readFileBytes(p), p.string());
+      } catch (const std::exception& e) {
+        stop = e.what();
+        break;
+      }
+      if (std::string why = cache::incompleteReason(dir, m, false); !why.empty()) {
+        stop = fmt::format("frame {}: {}", f, why);
+        break;
+      }
+      fewest = complete < 0 ? m.substeps : std::min(fewest, m.substeps);
+      most = std::max(most, m.substeps);
+      run = m.fingerprint;
+      complete = f;
+    }
+    fmt::print("run {} in {}: ", name, dirText);
+    if (complete < 0) {
+      fmt::print("no complete frame ({})\n", stop);
+    } else {
+      fmt::print("frames 0..{} complete, {} substeps a frame, run {:016x}\n", complete,
+                 fewest == most ? fmt::format("{}", most) : fmt::format("{}..{}", fewest, most), run);
+    }
+    if (!stop.empty() && complete >= 0) fmt::print("  then: {}\n", stop);
+    const std::vector<std::int64_t> checkpoints = cache::checkpointFrames(dir, name);
+    std::string list;
+    for (const std::int64_t f : checkpoints) list += (list.empty() ? "" : ", ") + std::to_string(f);
+    fmt::print("  checkpoints: {}\n", checkpoints.empty() ? std::string("none") : list);
+    // The newest intact checkpoint of a complete frame (its checksum read, as --resume does).
+    std::int64_t resumeAt = -1;
+    for (auto it = checkpoints.rbegin(); it != checkpoints.rend() && resumeAt < 0; ++it) {
+      if (*it > complete) continue;
+      const std::filesystem::path p = cache::checkpointPath(dir, name, *it);
+      try {
+        const solver::CheckpointInfo c = solver::checkpointInfo(cache::readFileBytes(p), p.string());
+        if (c.frame == *it && c.fingerprint == run) resumeAt = *it;
+      } catch (const std::exception& e) {
+        fmt::print("  {}\n", e.what());
+      }
+    }
+    if (resumeAt >= 0)
+      fmt::print("  run --resume would continue after frame {}\n", resumeAt);
+    else
+      fmt::print("  run --resume would start over at frame 0\n");
   }
 }
 

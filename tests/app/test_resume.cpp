@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <random>
 #include <thread>
@@ -195,6 +196,41 @@ TEST(Resume, NothingToResumeStartsAtFrameZeroAndAFreshRunForgetsTheOldOne) {
   ASSERT_EQ(runSoftsub(base + " --frames 2 --checkpoint-every 0 --out n", tmp.path()).code, 0);
   EXPECT_EQ(cache::manifestFrames(tmp / "n", "honey-drop").size(), 3u);
   EXPECT_TRUE(cache::checkpointFrames(tmp / "n", "honey-drop").empty());
+}
+
+TEST(Resume, InfoTellsWhichFramesAreCompleteAndWhereResumeContinues) {
+  TempDir tmp;
+  ASSERT_EQ(runSoftsub("run -q " + scenePath("two-fluids.scene") + " --frames 3 --out o", tmp.path()).code, 0);
+  RunResult r = runSoftsub("info o", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("run two-fluids in o: frames 0..3 complete, 8 substeps a frame"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("checkpoints: 2, 3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("would continue after frame 3"), std::string::npos) << r.out;
+  r = runSoftsub("info o/manifest/two-fluids.0001.manifest", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("frame 1, 8 substeps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(": complete"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("two-fluids.0001.sim"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("removed since"), std::string::npos) << "frame 1's checkpoint was pruned\n" << r.out;
+  r = runSoftsub("info o/checkpoint/two-fluids.0003.state", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("frame 3, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("intact"), std::string::npos) << r.out;
+  // A lost file makes its frame and every later one incomplete; the checkpoints are
+  // then past the complete frames, so a resume starts over.
+  fs::remove(tmp / "o" / "two-fluids.0002.sim");
+  r = runSoftsub("info o", tmp.path());
+  EXPECT_NE(r.out.find("frames 0..1 complete"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("then: frame 2: 'two-fluids.0002.sim' is missing"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("would start over at frame 0"), std::string::npos) << r.out;
+  // A damaged checkpoint is refused by info as by --resume.
+  std::string state = readFile(tmp / "o" / "checkpoint" / "two-fluids.0003.state");
+  state[state.size() / 2] ^= 1;
+  std::ofstream(tmp / "o" / "checkpoint" / "two-fluids.0003.state", std::ios::binary) << state;
+  r = runSoftsub("info o/checkpoint/two-fluids.0003.state", tmp.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("checksum"), std::string::npos) << r.err;
+  EXPECT_EQ(runSoftsub("info " + quote(tmp.path()), tmp.path()).code, 2) << "not a run's folder";
 }
 
 TEST(Resume, AFullDiskIsAnIoErrorWithEarlierFramesCompleteAndResumeFinishesTheRun) {
