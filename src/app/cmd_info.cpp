@@ -21,7 +21,8 @@ CLI::App* addInfoCommand(CLI::App& root, InfoOptions& o) {
 }
 
 int infoCommand(const InfoOptions& o) {
-  if (std::filesystem::is_directory(o.file)) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(o.file, ec)) {
     printRunFolderInfo(o.file);
     return static_cast<int>(ExitCode::Ok);
   }

@@ -109,16 +109,26 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
 bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
 
 /// A hash of everything that decides a run's outputs except how many frames it runs:
-/// the scene after the overrides, its initial particles (fills and meshes included),
-/// the output and solver options, and the softsub version. A resumed run must match it;
-/// leaving the frame count out lets a finished run be extended.
+/// the scene after the overrides, the simulation's starting state (fills placed, bodies'
+/// particles where their bodies put them, the bodies' states), the objects' meshes as
+/// written to <scene>Geo/, the output and solver options, and the softsub version. A
+/// resumed run must match it; leaving the frame count out lets a finished run be extended.
 std::uint64_t runFingerprint(const RunOptions& o, scene::SceneDesc desc, const cache::Formats& formats,
-                             const solver::Model& model, const solver::State& initial) {
+                             const solver::Simulation& sim, const std::vector<cache::ObjectMesh>& meshes) {
   desc.simulation.frames = 1;
   std::uint64_t h = hashBytes(scene::writeSceneText(desc));
+  const solver::State& initial = sim.state();
   const ParticleStore& s = initial.particles;
   for (const std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz})
     h = hashBytes({reinterpret_cast<const char*>(a->data()), a->size() * sizeof(float)}, h);
+  for (const rigid::BodyState& b : initial.bodies)
+    h = hashBytes(fmt::format("{:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a} {:a}", b.position.x(),
+                              b.position.y(), b.position.z(), b.orientation.w(), b.orientation.x(),
+                              b.orientation.y(), b.orientation.z(), b.velocity.x(), b.velocity.y(), b.velocity.z(),
+                              b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z()),
+                  h);
+  for (const cache::ObjectMesh& mesh : meshes) h = hashBytes(cache::encodeObj(mesh), h);
+  const solver::Model& model = sim.model();
   const std::string options = fmt::format(
       "softsub {}|formats {}|voxel {:.17g}|blob {:.17g}|adaptive {} {}|speed-limit {:.17g}|record-up-to {}",
       SOFTSUB_VERSION, cache::formatsToString(formats), o.surface.voxelSize, o.surface.radiusScale,
@@ -214,12 +224,12 @@ int runCommand(const RunOptions& o) {
   compiled.model.adaptiveSubsteps = o.adaptive;
   compiled.model.maxSubsteps = o.maxSubsteps;
   compiled.model.maxTravelPerSubstep = o.speedLimit;
-  const std::uint64_t fingerprint = runFingerprint(o, loaded.desc, formats, compiled.model, compiled.state);
   std::vector<cache::ObjectMesh> meshes = session::objectMeshesForCache(compiled.model, compiled.objectMeshes, loaded.name);
   std::optional<render::RenderScene> view;
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();
   solver::Simulation sim(compiled.model, std::move(compiled.state));
+  const std::uint64_t fingerprint = runFingerprint(o, loaded.desc, formats, sim, meshes);
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
                      "add mesh or vdb to --formats, or leave them out");
@@ -232,23 +242,25 @@ int runCommand(const RunOptions& o) {
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
 
-  // A killed run's temporary files go first; then, resuming, the run in the folder is
-  // checked and restored, or, starting afresh, its manifests and checkpoints are dropped.
+  // Resuming, the run in the folder is checked (a run with other settings is refused
+  // before anything on disk changes) and restored; then a killed run's temporary files
+  // go; starting afresh, the folder's manifests and checkpoints of this scene go too.
   ResumePoint resumed;
   if (anyFormat(formats)) {
-    const std::size_t stale = cache::removeStaleTemporaries(outDir);
-    if (stale > 0 && chatty) fmt::print(stderr, "note: removed {} unfinished temporary file(s) of a stopped run\n", stale);
     if (o.resume) {
       resumed = resumeFrom(outDir, loaded.name, fingerprint, sim);
       if (resumed.frame < 0 && chatty)
         fmt::print(stderr, "note: nothing to resume ({}): starting at frame 0\n", resumed.note);
-      if (resumed.frame >= 0 && chatty)
-        fmt::print(stderr, "resuming after frame {} ({} complete)\n", resumed.frame, folderText(outDir));
-      if (resumed.frame >= lastFrame) {
-        if (chatty) fmt::print(stderr, "done: frames 0..{} were already complete\n", resumed.frame);
-        return static_cast<int>(ExitCode::Ok);
-      }
     }
+    const std::size_t stale = cache::removeStaleTemporaries(outDir);
+    if (stale > 0 && chatty) fmt::print(stderr, "note: removed {} unfinished temporary file(s) of a stopped run\n", stale);
+    if (o.resume && resumed.completeUpTo >= lastFrame) {
+      pruneCheckpoints(outDir, loaded.name);
+      if (chatty) fmt::print(stderr, "done: frames 0..{} were already complete\n", resumed.completeUpTo);
+      return static_cast<int>(ExitCode::Ok);
+    }
+    if (resumed.frame >= 0 && chatty)
+      fmt::print(stderr, "resuming after frame {} ({} complete)\n", resumed.frame, folderText(outDir));
     if (resumed.frame < 0) forgetEarlierRun(outDir, loaded.name);
   }
 

@@ -166,8 +166,10 @@ void printRunFolderInfo(const std::string& dirText) {
         stop = fmt::format("frame {}: {}", f, why);
         break;
       }
-      fewest = complete < 0 ? m.substeps : std::min(fewest, m.substeps);
-      most = std::max(most, m.substeps);
+      if (f > 0) {  // frame 0 is the initial state: it took no substep
+        fewest = most == 0 ? m.substeps : std::min(fewest, m.substeps);
+        most = std::max(most, m.substeps);
+      }
       run = m.fingerprint;
       complete = f;
     }
@@ -175,8 +177,10 @@ void printRunFolderInfo(const std::string& dirText) {
     if (complete < 0) {
       fmt::print("no complete frame ({})\n", stop);
     } else {
-      fmt::print("frames 0..{} complete, {} substeps a frame, run {:016x}\n", complete,
-                 fewest == most ? fmt::format("{}", most) : fmt::format("{}..{}", fewest, most), run);
+      const std::string substeps = most == 0        ? std::string("no substep yet")
+                                   : fewest == most ? fmt::format("{} substeps a frame", most)
+                                                    : fmt::format("{}..{} substeps a frame", fewest, most);
+      fmt::print("frames 0..{} complete, {}, run {:016x}\n", complete, substeps, run);
     }
     if (!stop.empty() && complete >= 0) fmt::print("  then: {}\n", stop);
     const std::vector<std::int64_t> checkpoints = cache::checkpointFrames(dir, name);

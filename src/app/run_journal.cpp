@@ -55,18 +55,29 @@ void RunJournal::onFrame(const FrameSnapshot& frame) {
     cache::writeFileAtomic(path, buffer_);
     m.checkpoint = cache::ManifestEntry{path.lexically_relative(dir_).generic_string(), buffer_.size()};
   }
+  if (due) {
+    // Older checkpoints go before the manifest: the previous one stays until this frame
+    // is complete, so a kill anywhere leaves a complete frame with its checkpoint, and
+    // the folder never holds more than the two newest (the same set whatever the kill).
+    checkpoints_.erase(std::remove(checkpoints_.begin(), checkpoints_.end(), frame.frame), checkpoints_.end());
+    checkpoints_.push_back(frame.frame);
+    std::sort(checkpoints_.begin(), checkpoints_.end());
+    while (checkpoints_.size() > kCheckpointsKept) {
+      removeQuietly(cache::checkpointPath(dir_, scene_, checkpoints_.front()));
+      checkpoints_.erase(checkpoints_.begin());
+    }
+  }
   const std::filesystem::path manifest = cache::manifestPath(dir_, scene_, frame.frame);
   cache::ensureDirectory(manifest.parent_path());
   // Last: the frame is complete from here on.
   cache::writeFileAtomic(manifest, cache::encodeManifest(m));
-  if (!due) return;
-  // Older checkpoints go only once a newer frame is complete.
-  checkpoints_.erase(std::remove(checkpoints_.begin(), checkpoints_.end(), frame.frame), checkpoints_.end());
-  checkpoints_.push_back(frame.frame);
-  std::sort(checkpoints_.begin(), checkpoints_.end());
-  while (checkpoints_.size() > kCheckpointsKept) {
-    removeQuietly(cache::checkpointPath(dir_, scene_, checkpoints_.front()));
-    checkpoints_.erase(checkpoints_.begin());
+}
+
+void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sceneName) {
+  std::vector<std::int64_t> frames = cache::checkpointFrames(outDir, sceneName);
+  while (frames.size() > kCheckpointsKept) {
+    removeQuietly(cache::checkpointPath(outDir, sceneName, frames.front()));
+    frames.erase(frames.begin());
   }
 }
 
@@ -78,24 +89,24 @@ ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& s
     point.note = fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string());
     return point;
   }
-  // The settings of the run in the folder: its newest readable manifest says.
+  // Every manifest that reads (a damaged one is skipped here and ends the complete run of
+  // frames below); the settings of the run in the folder are its newest one's.
   std::vector<cache::Manifest> manifests;
   for (const std::int64_t f : frames) {
     const std::filesystem::path path = cache::manifestPath(outDir, sceneName, f);
     try {
       manifests.push_back(cache::decodeManifest(cache::readFileBytes(path), path.string()));
     } catch (const InputError&) {
-      break;  // a damaged manifest ends the complete run of frames
     } catch (const IoError&) {
-      break;
     }
   }
-  if (!manifests.empty() && manifests.back().fingerprint != fingerprint)
-    throw InputError({outDir.string(), 0, "--resume"},
-                     fmt::format("the folder holds frames 0..{} of '{}' made with other settings (the scene, an "
-                                 "option or the softsub version changed)",
-                                 manifests.back().frame, sceneName),
-                     "the same scene and options as the run being resumed, or run without --resume to start over");
+  for (auto it = manifests.rbegin(); it != manifests.rend(); ++it)
+    if (it->fingerprint != fingerprint)
+      throw InputError({outDir.string(), 0, "--resume"},
+                       fmt::format("the folder holds frame {} of '{}' made with other settings (the scene, its "
+                                   "meshes, an option or the softsub version changed)",
+                                   it->frame, sceneName),
+                       "the same scene and options as the run being resumed, or run without --resume to start over");
   // The complete frames: 0, 1, 2, ... each with its manifest and every listed file.
   std::size_t complete = 0;
   while (complete < manifests.size() && manifests[complete].frame == static_cast<std::int64_t>(complete) &&

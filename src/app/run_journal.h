@@ -48,10 +48,15 @@ struct ResumePoint {
 
 /// Finds the newest frame of `sceneName` in `outDir` that is complete (its manifest and
 /// every earlier frame's are whole) and has an intact checkpoint of a run with
-/// `fingerprint`, and restores `sim` to it. InputError when the folder holds a run with
-/// other settings (nothing is changed then).
+/// `fingerprint`, and restores `sim` to it. InputError when any manifest in the folder
+/// belongs to a run with other settings (nothing is changed then). A checkpoint that does
+/// not restore leaves `sim` as it was and the next older one is tried.
 [[nodiscard]] ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& sceneName,
                                      std::uint64_t fingerprint, solver::Simulation& sim);
+
+/// Removes all but the two newest checkpoints of `sceneName` in `outDir` (what a run that
+/// was never stopped leaves).
+void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sceneName);
 
 /// Before a fresh (not resumed) run writes anything: removes the folder's manifests and
 /// checkpoints of `sceneName`, which describe an earlier run.

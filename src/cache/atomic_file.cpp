@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -22,14 +23,15 @@ std::string reason(int err) { return std::generic_category().message(err); }
   throw IoError(fmt::format("cannot {} '{}': {}", action, path.string(), reason(err)));
 }
 
-/// A name no other writer in this or another process uses at the same time:
-/// `.<name>.tmp.<pid>.<counter>`, hidden so that tools listing frames skip it.
+/// A name no other writer uses at the same time: `.<name>.tmp.<host>.<pid>.<counter>`,
+/// hidden so that tools listing frames skip it. The host tells a later run on shared
+/// storage which leftovers it may judge by process id (removeStaleTemporaries).
 std::filesystem::path temporaryName(const std::filesystem::path& path) {
   static std::atomic<std::uint64_t> counter{0};
   const std::uint64_t n = counter.fetch_add(1, std::memory_order_relaxed);
   std::filesystem::path tmp = path;
-  tmp.replace_filename(
-      fmt::format(".{}.tmp.{}.{}", path.filename().string(), static_cast<long>(::getpid()), n));
+  tmp.replace_filename(fmt::format(".{}.tmp.{}.{}.{}", path.filename().string(), hostTag(),
+                                   static_cast<long>(::getpid()), n));
   return tmp;
 }
 
@@ -52,13 +54,33 @@ int writeAll(int fd, std::string_view bytes) {
 
 }  // namespace
 
+std::string hostTag() {
+  static const std::string tag = [] {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return std::string("host");
+    std::string t;
+    for (const char* c = name; *c != '\0'; ++c) {
+      const auto u = static_cast<unsigned char>(*c);
+      t += (std::isalnum(u) != 0 || *c == '-') ? *c : '_';  // no '.': the name is parsed by its dots
+    }
+    return t;
+  }();
+  return tag;
+}
+
 std::filesystem::path temporaryPathFor(const std::filesystem::path& path) { return temporaryName(path); }
 
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes) {
   if (path.filename().empty()) fail("write", path, EISDIR);
-  const std::filesystem::path tmp = temporaryName(path);
-  // O_EXCL: never write through a stale temporary or a link someone placed there.
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  // O_EXCL: never write through a stale temporary or a link someone placed there. A
+  // leftover of a killed run with the same name (same host, a reused process id) makes
+  // the next name be tried instead.
+  std::filesystem::path tmp = temporaryName(path);
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  for (int tries = 0; fd < 0 && errno == EEXIST && tries < 100; ++tries) {
+    tmp = temporaryName(path);
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  }
   if (fd < 0) fail("write", path, errno);
 
   int err = writeAll(fd, bytes);

@@ -12,9 +12,13 @@ namespace softsub::cache {
 /// removed, `path` is left as it was, and IoError names the path and the reason.
 void writeFileAtomic(const std::filesystem::path& path, std::string_view bytes);
 
+/// This machine's name as temporary file names carry it (letters, digits, '-' and '_').
+[[nodiscard]] std::string hostTag();
+
 /// A temporary name for `path` in the same folder, unique to this process and call:
-/// `.<name>.tmp.<pid>.<n>`, the name writeFileAtomic writes under, which the next run
-/// recognises and removes when its process is gone (removeStaleTemporaries). For files a
+/// `.<name>.tmp.<host>.<pid>.<n>`, the name writeFileAtomic writes under, which the next
+/// run on this host recognises and removes when its process is gone
+/// (removeStaleTemporaries). For files a
 /// library writes itself (OpenVDB): write there, then rename over `path`.
 [[nodiscard]] std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
 

@@ -1,6 +1,7 @@
 #include "cache/manifest.h"
 
 #include <signal.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -9,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "cache/atomic_file.h"
 #include "cache/naming.h"
 #include "core/error.h"
 
@@ -53,16 +55,19 @@ std::vector<std::int64_t> framesIn(const std::filesystem::path& folder, std::str
   return frames;
 }
 
-/// True when `name` is writeFileAtomic's temporary name `.<file>.tmp.<pid>.<n>`; `pid`
-/// gets the writer's process id.
-bool isTemporaryName(std::string_view name, long& pid) {
+/// True when `name` is writeFileAtomic's temporary name `.<file>.tmp.<host>.<pid>.<n>`;
+/// `host` and `pid` get the writer's.
+bool isTemporaryName(std::string_view name, std::string_view& host, long& pid) {
   if (name.size() < 2 || name[0] != '.') return false;
   const auto last = name.rfind('.');
   if (last == std::string_view::npos || last == 0) return false;
-  const auto second = name.rfind('.', last - 1);
-  if (second == std::string_view::npos || second < 5 || name.substr(second - 4, 4) != ".tmp") return false;
+  const auto pidDot = name.rfind('.', last - 1);
+  if (pidDot == std::string_view::npos || pidDot == 0) return false;
+  const auto hostDot = name.rfind('.', pidDot - 1);
+  if (hostDot == std::string_view::npos || hostDot < 5 || name.substr(hostDot - 4, 4) != ".tmp") return false;
+  host = name.substr(hostDot + 1, pidDot - hostDot - 1);
   std::uint64_t counter = 0;
-  return parseNumber(name.substr(second + 1, last - second - 1), pid) && pid > 0 &&
+  return !host.empty() && parseNumber(name.substr(pidDot + 1, last - pidDot - 1), pid) && pid > 0 &&
          parseNumber(name.substr(last + 1), counter);
 }
 
@@ -186,10 +191,17 @@ std::size_t removeStaleTemporaries(const std::filesystem::path& dir) {
         if (descend) sub.push_back(p);
         continue;
       }
+      const std::string file = p.filename().string();
+      std::string_view host;
       long pid = 0;
-      if (!isTemporaryName(p.filename().string(), pid)) continue;
-      // kill(pid, 0) succeeds (or fails with EPERM) while that process lives.
-      if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM) continue;
+      if (!isTemporaryName(file, host, pid)) continue;
+      // Another host's process cannot be asked (shared storage): left alone.
+      if (host != hostTag()) continue;
+      // kill(pid, 0) succeeds (or fails with EPERM) while that process lives; our own
+      // process id on a leftover means an earlier process that had it (this one has not
+      // written yet: the function runs before a run's first write).
+      if (pid != static_cast<long>(::getpid()) && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM))
+        continue;
       std::error_code removeError;
       if (std::filesystem::remove(p, removeError)) ++removed;
     }

@@ -54,9 +54,11 @@ struct Manifest {
 /// Frames that have a checkpoint of `sceneName` in `dir`, ascending.
 [[nodiscard]] std::vector<std::int64_t> checkpointFrames(const std::filesystem::path& dir, std::string_view sceneName);
 
-/// Removes the temporary files (`.<name>.tmp.<pid>.<n>`, writeFileAtomic's) that a killed
-/// run left in `dir` and its subfolders (one level), skipping those of a process still
-/// running. Returns how many were removed. Errors are ignored: a leftover is harmless.
+/// Removes the temporary files (`.<name>.tmp.<host>.<pid>.<n>`, writeFileAtomic's) that a
+/// killed run on this host left in `dir` and its subfolders (one level), skipping those
+/// of a process still running and those of other hosts. A leftover with this process's
+/// own id counts as stale: call this before the process writes into `dir`. Returns how
+/// many were removed. Errors are ignored: a leftover is harmless.
 std::size_t removeStaleTemporaries(const std::filesystem::path& dir);
 
 }  // namespace softsub::cache

@@ -59,8 +59,9 @@ struct Model {
   /// often (docs/architecture.md, "The pair list").
   double pairListSkin = 0.1;
   /// The blow-up check after every substep (docs/architecture.md, "Blow-up checks"): a
-  /// particle or body whose speed would carry it further than this many longest
-  /// interaction distances in one substep stops the run with BlowUpError, as does any
+  /// particle or body whose speed would carry it further than this many interaction
+  /// distances (its material's longest cutoff; with bodies, at least the contact reach)
+  /// in one substep stops the run with BlowUpError, as does any
   /// non-finite position or velocity. 0 turns the speed part off.
   double maxTravelPerSubstep = 10;
   /// Adaptive substeps (`run --adaptive`): each frame's substep count is chosen from the

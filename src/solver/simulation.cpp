@@ -325,7 +325,9 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
 int Simulation::chooseSubsteps() const {
   const double fps = model_.framesPerSecond;
   double n = std::max({1, model_.substeps, stableSubsteps_});
-  const Extremes e = scanParticles(state_.forcesValid);
+  // The forces of the last evaluation (zero before the first, so gravity alone) are the
+  // acceleration's estimate for every integrator.
+  const Extremes e = scanParticles(true);
   if (e.finite) {
     // v T / n <= kAdaptiveTravel reach, and (a / 2) (T / n)^2 <= kAdaptiveTravel reach.
     n = std::max(n, std::ceil(e.speed / (fps * kAdaptiveTravel)));
@@ -346,41 +348,72 @@ Simulation::ListReference Simulation::listReference() const {
 
 void Simulation::restore(State state, std::vector<float> refX, std::vector<float> refY, std::vector<float> refZ) {
   const std::size_t n = state.particles.size();
-  if (n != model_.particleCount() || state.bodies.size() != model_.bodies.bodies.size())
+  if (n != model_.particleCount() || n != state_.particles.size() ||
+      state.bodies.size() != model_.bodies.bodies.size())
     throw std::invalid_argument("the checkpoint does not fit the scene: particle or object counts differ");
-  for (const std::uint16_t m : state.particles.material)
-    if (m >= model_.materials.size()) throw std::invalid_argument("the checkpoint names an unknown material");
-  const std::size_t entities = model_.fluids.size() + model_.bodies.bodies.size();
-  for (const std::uint32_t o : state.particles.owner)
-    if (o >= entities) throw std::invalid_argument("the checkpoint names an unknown fluid or object");
   if (!refX.empty() && (refX.size() != n || refY.size() != n || refZ.size() != n))
     throw std::invalid_argument("the checkpoint's list reference has the wrong size");
+  // Each particle keeps its id's owner and material (what the model gave it), and every
+  // value is finite: a checkpoint is trusted no further than a scene file.
+  const ParticleStore& now = state_.particles;
+  now.slotsById(slotOfId_);
+  const ParticleStore& in = state.particles;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t id = in.id[i];
+    if (id >= n) throw std::invalid_argument("the checkpoint has an out-of-range particle id");
+    const std::uint32_t slot = slotOfId_[id];
+    if (in.owner[i] != now.owner[slot] || in.material[i] != now.material[slot])
+      throw std::invalid_argument("the checkpoint's particles do not belong to this scene's fluids and objects");
+  }
+  const auto allFinite = [](const std::vector<float>& a) {
+    return std::all_of(a.begin(), a.end(), [](float x) { return std::isfinite(x); });
+  };
+  for (const std::vector<float>* a : std::initializer_list<const std::vector<float>*>{
+           &in.px, &in.py, &in.pz, &in.vx, &in.vy, &in.vz, &in.fx, &in.fy, &in.fz, &refX, &refY, &refZ})
+    if (!allFinite(*a)) throw std::invalid_argument("the checkpoint holds a value that is not finite");
+  for (const rigid::BodyState& b : state.bodies)
+    if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angularMomentum.allFinite() ||
+        !b.orientation.coeffs().allFinite())
+      throw std::invalid_argument("the checkpoint holds a body state that is not finite");
+
+  // Rebuild the grid and list from the positions they were built from: the store is
+  // still in the order that build sorted it into, so the grid finds it sorted and the
+  // list comes out exactly as before. On any failure the simulation is left as it was.
+  State previous = std::move(state_);
   state_ = std::move(state);
+  const auto giveBack = [&] {
+    state_ = std::move(previous);
+    listValid_ = false;
+    if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
+  };
   substepInFrame_ = 0;
   substeps_ = std::max(1, model_.substeps);
   listValid_ = false;
   if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
   if (refX.empty()) return;
-  // Rebuild the grid and list from the positions they were built from: the store is
-  // still in the order that build sorted it into, so the grid finds it sorted and the
-  // list comes out exactly as before.
   ParticleStore& s = state_.particles;
   s.px.swap(refX);
   s.py.swap(refY);
   s.pz.swap(refZ);
   grid_.rebuild(s, cellSize_ + skin_);
-  const bool reordered = grid_.reordered();
-  if (!reordered) {
+  if (grid_.reordered()) {
+    // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
+    giveBack();
+    throw std::invalid_argument("the checkpoint's particle order does not match its list reference");
+  }
+  try {
     list_.build(grid_, model_.table, s, skin_, listOptions_);
     if (!model_.bodies.empty()) listRigidPairs();
+  } catch (...) {
+    s.px.swap(refX);
+    s.py.swap(refY);
+    s.pz.swap(refZ);
+    giveBack();
+    throw;
   }
   s.px.swap(refX);
   s.py.swap(refY);
   s.pz.swap(refZ);
-  if (reordered) {
-    // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
-    throw std::invalid_argument("the checkpoint's particle order does not match its list reference");
-  }
   refX_ = std::move(refX);
   refY_ = std::move(refY);
   refZ_ = std::move(refZ);

@@ -98,9 +98,10 @@ class Simulation {
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
   [[noreturn]] void reportBlowUp() const;
 
-  /// Largest |v| / reach and |a| / reach over the particles (reach: the interaction
-  /// distance of the particle's material); `finite` false when any position, velocity
-  /// (or, with forces, force) is not finite. Exact maxima: the same for any split.
+  /// Largest |v| / reach and |a| / reach over the particles (reach: reach_ of the
+  /// particle's material); `finite` false when any position or velocity is not finite
+  /// (non-finite forces are left out of the acceleration). Exact maxima: the same for
+  /// any split.
   struct Extremes {
     float speed = 0;         ///< max |v| / reach, 1/s
     float acceleration = 0;  ///< max |f/m + g| / reach, 1/s^2

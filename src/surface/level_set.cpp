@@ -3,6 +3,7 @@
 // one alone costs about a minute and 1.4 GB of memory to compile at -O2).
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/VolumeToMesh.h>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -490,9 +492,8 @@ namespace {
 /// other bytes: the same content, the same id. The header is magic (8 bytes), file
 /// version, library major and minor (4 each), a grid-offsets flag (1), then the UUID as
 /// 36 characters; anything else is left alone.
-void makeFileIdFromContent(const std::filesystem::path& file) {
+void makeFileIdFromContent(std::string& bytes) {
   constexpr std::size_t kUuidAt = 21, kUuidSize = 36;
-  std::string bytes = cache::readFileBytes(file);
   if (bytes.size() < kUuidAt + kUuidSize) return;
   for (const std::size_t dash : {8u, 13u, 18u, 23u})
     if (bytes[kUuidAt + dash] != '-') return;
@@ -503,12 +504,6 @@ void makeFileIdFromContent(const std::filesystem::path& file) {
   const std::string id = fmt::format("{:08x}-{:04x}-8{:03x}-{:04x}-{:012x}", a >> 32, (a >> 16) & 0xffff,
                                      a & 0xfff, 0x8000 | ((b >> 48) & 0x3fff), b & 0xffffffffffffULL);
   bytes.replace(kUuidAt, kUuidSize, id);
-  std::FILE* f = std::fopen(file.c_str(), "r+b");
-  if (f == nullptr) throw IoError("cannot write " + file.string() + ": " + std::strerror(errno));
-  const bool ok = std::fseek(f, static_cast<long>(kUuidAt), SEEK_SET) == 0 &&
-                  std::fwrite(id.data(), 1, id.size(), f) == id.size();
-  const int err = errno;
-  if (std::fclose(f) != 0 || !ok) throw IoError("cannot write " + file.string() + ": " + std::strerror(err));
 }
 
 }  // namespace
@@ -522,14 +517,20 @@ void LevelSet::writeVdb(const std::filesystem::path& file, const std::string& gr
     grid = openvdb::createLevelSet<openvdb::FloatGrid>(impl_->voxel > 0.0 ? impl_->voxel : 1.0);
   }
   grid->setName(gridName);
+  // Into memory through OpenVDB's stream writer, then written like every other output
+  // (writeFileAtomic: a temporary name, every write and the close checked, renamed).
+  // OpenVDB's own file writer does not check the stream after writing: on a full disk it
+  // would leave a short file behind.
+  std::ostringstream out(std::ios::binary);
   try {
-    openvdb::io::File out(file.string());
-    out.write({grid});
-    out.close();
+    openvdb::io::Stream(out).write({grid});
   } catch (const openvdb::Exception& e) {
     throw IoError("cannot write " + file.string() + ": " + e.what());
   }
-  makeFileIdFromContent(file);
+  if (!out) throw IoError("cannot write " + file.string() + ": encoding the level set failed");
+  std::string bytes = std::move(out).str();
+  makeFileIdFromContent(bytes);
+  cache::writeFileAtomic(file, bytes);
 }
 
 double LevelSet::sample(double x, double y, double z) const {

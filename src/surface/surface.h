@@ -74,8 +74,10 @@ class LevelSet {
   /// along their shorter diagonal), with normals from the gradient of the field it meshes
   /// (the blobby field for a level set built from particles).
   [[nodiscard]] SurfaceMesh mesh() const;
-  /// Writes the level set as a .vdb file with one grid called gridName (throws
-  /// softsub::IoError when it cannot be written).
+  /// Writes the level set as a .vdb file with one grid called gridName, atomically (a
+  /// temporary name, then renamed) and with a UUID derived from its content, so the same
+  /// level set always gives the same bytes. Throws softsub::IoError when it cannot be
+  /// written; nothing is left behind then.
   void writeVdb(const std::filesystem::path& file, const std::string& gridName = "surface") const;
   /// The signed distance at a point in scene units (trilinear; the background, a positive
   /// band width, far outside).

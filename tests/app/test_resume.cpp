@@ -9,12 +9,14 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "app_test_util.h"
+#include "cache/atomic_file.h"
 #include "cache/manifest.h"
 #include "cache/pdc_format.h"
 #include "cache/ply_format.h"
@@ -161,6 +163,9 @@ TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
   TempDir tmp;
   const std::string base = "run -q " + scenePath("two-fluids.scene") + " --frames 3 --out o";
   ASSERT_EQ(runSoftsub(base, tmp.path()).code, 0);
+  // A killed run's leftover (a dead process on this host): a refused resume leaves it too.
+  const fs::path leftover = tmp / "o" / fmt::format(".two-fluids.0004.sim.tmp.{}.999999999.0", cache::hostTag());
+  std::ofstream(leftover) << "half";
   const Tree before = treeOf(tmp / "o");
   for (const std::string other : {" --substeps 9", " --formats sim,pdc", " --integrator explicit-euler",
                                   " --adaptive", " --speed-limit 5"}) {
@@ -169,8 +174,10 @@ TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
     EXPECT_NE(r.err.find("other settings"), std::string::npos) << r.err;
     EXPECT_EQ(differences(before, treeOf(tmp / "o")), std::vector<std::string>{}) << other;
   }
-  // The thread count is not a setting: results do not depend on it.
+  // The thread count is not a setting: results do not depend on it. That run removes the
+  // leftover.
   EXPECT_EQ(runSoftsub("--threads 1 " + base + " --resume", tmp.path()).code, 0);
+  EXPECT_FALSE(fs::exists(leftover));
   // More frames than before extend the run.
   EXPECT_EQ(runSoftsub("run -q " + scenePath("two-fluids.scene") + " --frames 5 --out o --resume", tmp.path()).code,
             0);
@@ -180,6 +187,33 @@ TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
   const RunResult none = runSoftsub(base + " --resume --formats none", tmp.path());
   EXPECT_EQ(none.code, 2);
   EXPECT_NE(none.err.find("--resume"), std::string::npos) << none.err;
+}
+
+TEST(Resume, AnEditedObjectMeshIsAnotherSetting) {
+  TempDir tmp;
+  const fs::path good = fs::path(SOFTSUB_SOURCE_DIR) / "tests/data/scenes/good";
+  fs::copy(good / "objects.scene", tmp / "objects.scene");
+  fs::copy(good / "cubeGeo", tmp / "cubeGeo", fs::copy_options::recursive);
+  const std::string base = "run -q objects.scene --frames 2 --out o";
+  ASSERT_EQ(runSoftsub(base, tmp.path()).code, 0);
+  // The same cube, 10% larger: the scene's text is unchanged, its object is not.
+  std::string obj = readFile(tmp / "cubeGeo" / "cube.obj"), scaled;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream v(line.substr(2));
+      double x, y, z;
+      v >> x >> y >> z;
+      line = fmt::format("v {} {} {}", 1.1 * x, 1.1 * y, 1.1 * z);
+    }
+    scaled += line + "\n";
+  }
+  std::ofstream(tmp / "cubeGeo" / "cube.obj") << scaled;
+  const Tree before = treeOf(tmp / "o");
+  const RunResult r = runSoftsub(base + " --resume", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("other settings"), std::string::npos) << r.err;
+  EXPECT_EQ(differences(before, treeOf(tmp / "o")), std::vector<std::string>{});
 }
 
 TEST(Resume, NothingToResumeStartsAtFrameZeroAndAFreshRunForgetsTheOldOne) {

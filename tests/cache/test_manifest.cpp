@@ -125,28 +125,50 @@ long deadPid() {
   return pid;
 }
 
-TEST(StaleTemporaries, ThoseOfDeadWritersGoAndEverythingElseStays) {
+TEST(StaleTemporaries, ThoseOfDeadWritersOnThisHostGoAndEverythingElseStays) {
   test::ScratchDir tmp;
   const fs::path dir = tmp.path();
   ensureDirectory(dir / "pdc");
   ensureDirectory(dir / "deep" / "er");
+  const std::string host = hostTag();
+  EXPECT_EQ(host.find('.'), std::string::npos);
+  // writeFileAtomic's temporaries carry this host and process.
+  const std::string own = temporaryPathFor(dir / "s.sim").filename().string();
+  EXPECT_EQ(own.rfind(fmt::format(".s.sim.tmp.{}.{}.", host, ::getpid()), 0), 0u) << own;
   const long dead = deadPid();
-  const long alive = static_cast<long>(::getpid());
-  const std::vector<fs::path> stale = {dir / fmt::format(".s.0001.sim.tmp.{}.0", dead),
-                                       dir / "pdc" / fmt::format(".gooShape.250.pdc.tmp.{}.17", dead)};
+  const long alive = static_cast<long>(::getppid());  // the test runner's parent lives on
+  const std::vector<fs::path> stale = {
+      dir / fmt::format(".s.0001.sim.tmp.{}.{}.0", host, dead),
+      dir / "pdc" / fmt::format(".gooShape.250.pdc.tmp.{}.{}.17", host, dead),
+      // This process's own id on a leftover: an earlier process had it (a container's pid 1).
+      dir / fmt::format(".s.0003.sim.tmp.{}.{}.5", host, ::getpid())};
   const std::vector<fs::path> kept = {
-      dir / fmt::format(".s.0002.sim.tmp.{}.3", alive),          // a live writer's
-      dir / "s.0001.sim",                                        // frames
-      dir / fmt::format("s.tmp.{}.0", dead),                     // not hidden
-      dir / fmt::format(".s.sim.tmp.{}.x", dead),                // counter not a number
-      dir / ".notes.tmp",                                        // no pid
-      dir / "deep" / "er" / fmt::format(".x.tmp.{}.0", dead)};   // two levels down
+      dir / fmt::format(".s.0002.sim.tmp.{}.{}.3", host, alive),          // a live writer's
+      dir / fmt::format(".s.0004.sim.tmp.otherhost.{}.3", dead),         // another host's
+      dir / "s.0001.sim",                                                  // frames
+      dir / fmt::format("s.tmp.{}.{}.0", host, dead),                      // not hidden
+      dir / fmt::format(".s.sim.tmp.{}.{}.x", host, dead),                 // counter not a number
+      dir / ".notes.tmp",                                                  // no pid
+      dir / "deep" / "er" / fmt::format(".x.tmp.{}.{}.0", host, dead)};   // two levels down
   for (const fs::path& p : stale) std::ofstream(p) << "half";
   for (const fs::path& p : kept) std::ofstream(p) << "x";
   EXPECT_EQ(removeStaleTemporaries(dir), stale.size());
   for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
   for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
   EXPECT_EQ(removeStaleTemporaries(dir / "missing"), 0u);
+}
+
+TEST(StaleTemporaries, ALeftoverWithTheNextTemporaryNameDoesNotStopAWrite) {
+  test::ScratchDir tmp;
+  const fs::path file = tmp.path() / "s.0001.sim";
+  // Occupy the names the next writes would take (a killed run with the same process id).
+  const std::string next = temporaryPathFor(file).filename().string();
+  const auto dot = next.rfind('.');
+  const std::uint64_t n = std::stoull(next.substr(dot + 1));
+  for (std::uint64_t k = n + 1; k < n + 4; ++k)
+    std::ofstream(tmp.path() / (next.substr(0, dot + 1) + std::to_string(k))) << "left";
+  writeFileAtomic(file, "frame");
+  EXPECT_EQ(readFileBytes(file), "frame");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -131,6 +132,49 @@ TEST_F(Refuse, DamagedCutForeignAndOtherRunsCheckpoints) {
   std::string foreign;
   encodeCheckpoint(sim, 7, foreign);
   EXPECT_NE(problemOf(foreign).find("does not fit"), std::string::npos);
+}
+
+/// `bytes` with its checksum made right again: what a crafted (not a damaged) file is.
+std::string resealed(std::string bytes) {
+  const std::uint64_t sum = hashBytes(std::string_view(bytes).substr(0, bytes.size() - 8));
+  std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+  return bytes;
+}
+
+TEST_F(Refuse, CraftedCheckpointsWithAValidChecksumAreStillRefusedAndChangeNothing) {
+  constexpr std::size_t kHeader = 48;
+  const std::size_t n = checkpointInfo(bytes_, "x").particles;
+  ASSERT_GT(n, 2u);
+  const std::size_t materialAt = kHeader + 9 * 4 * n, ownerAt = materialAt + 2 * n, idAt = ownerAt + 4 * n;
+  EXPECT_EQ(problemOf(resealed(bytes_)), "accepted");
+  // A particle moved to the other fluid (owner and material of another id).
+  std::string owner = bytes_;
+  std::uint32_t o;
+  std::memcpy(&o, owner.data() + ownerAt, 4);
+  o ^= 1u;
+  std::memcpy(owner.data() + ownerAt, &o, 4);
+  EXPECT_NE(problemOf(resealed(owner)).find("do not belong"), std::string::npos);
+  // A position that is not finite.
+  std::string nan = bytes_;
+  const float inf = std::numeric_limits<float>::infinity();
+  std::memcpy(nan.data() + kHeader + 4, &inf, 4);
+  EXPECT_NE(problemOf(resealed(nan)).find("not finite"), std::string::npos);
+  // The store's first and last slots swapped whole (positions, velocities, ids, owners,
+  // list reference): every particle is consistent, but the reference positions no longer
+  // come in the grid's order, so the list would not be the one the run had.
+  ASSERT_EQ(bytes_.size(), idAt + 4 * n + 3 * 4 * n + 8) << "the run holds a pair list";
+  std::string order = bytes_;
+  const auto swapSlots = [&](std::size_t base, std::size_t width) {
+    std::string first = order.substr(base, width);
+    order.replace(base, width, order.substr(base + width * (n - 1), width));
+    order.replace(base + width * (n - 1), width, first);
+  };
+  for (int k = 0; k < 9; ++k) swapSlots(kHeader + 4 * n * k, 4);
+  swapSlots(materialAt, 2);
+  swapSlots(ownerAt, 4);
+  swapSlots(idAt, 4);
+  for (int k = 0; k < 3; ++k) swapSlots(idAt + 4 * n + 4 * n * k, 4);
+  EXPECT_NE(problemOf(resealed(order)).find("order does not match"), std::string::npos);
 }
 
 TEST(HashBytes, EveryByteAndTheSeedMatter) {

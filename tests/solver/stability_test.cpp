@@ -271,6 +271,21 @@ TEST(Stability, AdaptiveSubstepsFollowTheFastestParticle) {
   const int n = Simulation(c.model, c.state).chooseSubsteps();
   EXPECT_GE(n, 100 * base - 1);
   EXPECT_LE(n, 100 * base + 1);
+  // And by acceleration, whatever the integrator (the default, symplectic Euler, too):
+  // (a / 2) (T / n)^2 <= kAdaptiveTravel reach with a = gravity alone before any force.
+  c.state.particles.vx[0] = 0;
+  for (const scene::Integrator integrator : {scene::Integrator::SymplecticEuler, scene::Integrator::ExplicitEuler,
+                                             scene::Integrator::VelocityVerlet}) {
+    scene::SceneDesc g = d;
+    g.simulation.integrator = integrator;
+    g.simulation.gravity = {0, -1e7, 0};
+    scene::Compiled cg = scene::compile(g);
+    cg.model.adaptiveSubsteps = true;
+    const double need = std::sqrt(0.5 * 1e7 / (kAdaptiveTravel * reach)) / cg.model.framesPerSecond;
+    const int chosen = Simulation(cg.model, cg.state).chooseSubsteps();
+    EXPECT_GE(chosen, static_cast<int>(std::ceil(need)) - 1) << static_cast<int>(integrator);
+    EXPECT_GT(chosen, base) << static_cast<int>(integrator);
+  }
 }
 
 }  // namespace
