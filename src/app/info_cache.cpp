@@ -4,7 +4,6 @@
 #include <array>
 #include <filesystem>
 #include <map>
-#include <set>
 
 #include <fmt/format.h>
 
@@ -16,6 +15,7 @@
 #include "cmd_info.h"
 #include "core/aabb.h"
 #include "core/error.h"
+#include "run_journal.h"
 #include "solver/checkpoint.h"
 #include "text_format.h"
 
@@ -126,75 +126,44 @@ void printCheckpointInfo(const std::string& path) {
 
 void printRunFolderInfo(const std::string& dirText) {
   const std::filesystem::path dir(dirText);
-  // Scene names: manifest/<name>.NNNN.manifest.
-  std::set<std::string> names;
-  std::error_code ec;
-  for (std::filesystem::directory_iterator it(dir / "manifest", ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string file = it->path().filename().string();
-    const std::string suffix = ".manifest";
-    if (file.size() <= suffix.size() || file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string stem = file.substr(0, file.size() - suffix.size());
-    const auto dot = stem.rfind('.');
-    if (dot != std::string::npos && dot > 0) names.insert(stem.substr(0, dot));
-  }
+  const std::vector<std::string> names = cache::manifestSceneNames(dir);
   if (names.empty())
     throw InputError({dirText, 0, {}}, "no manifest/ with frame manifests: not a softsub run's output folder",
                      "a folder `softsub run` wrote (it has manifest/<scene>.NNNN.manifest files)");
   for (const std::string& name : names) {
-    const std::vector<std::int64_t> frames = cache::manifestFrames(dir, name);
-    if (frames.empty()) continue;
-    // Frames 0, 1, ... in a row whose manifests read and whose files are all there.
-    std::int64_t complete = -1;
-    std::string stop;
-    int fewest = 0, most = 0;
-    std::uint64_t run = 0;
-    for (const std::int64_t f : frames) {
-      if (f != complete + 1) {
-        stop = fmt::format("frame {} has no manifest", complete + 1);
-        break;
-      }
-      const std::filesystem::path p = cache::manifestPath(dir, name, f);
-      cache::Manifest m;
-      try {
-        m = cache::decodeManifest(cache::readFileBytes(p), p.string());
-      } catch (const std::exception& e) {
-        stop = e.what();
-        break;
-      }
-      if (std::string why = cache::incompleteReason(dir, m, false); !why.empty()) {
-        stop = fmt::format("frame {}: {}", f, why);
-        break;
-      }
-      if (f > 0) {  // frame 0 is the initial state: it took no substep
-        fewest = most == 0 ? m.substeps : std::min(fewest, m.substeps);
-        most = std::max(most, m.substeps);
-      }
-      run = m.fingerprint;
-      complete = f;
-    }
+    const RunFrames run = readRunFrames(dir, name);
     fmt::print("run {} in {}: ", name, dirText);
-    if (complete < 0) {
-      fmt::print("no complete frame ({})\n", stop);
+    if (run.complete == 0) {
+      fmt::print("no complete frame ({})\n", run.stop);
     } else {
+      // Frame 0 is the initial state: it took no substep.
+      int fewest = 0, most = 0;
+      for (std::size_t k = 1; k < run.complete; ++k) {
+        fewest = most == 0 ? run.manifests[k].substeps : std::min(fewest, run.manifests[k].substeps);
+        most = std::max(most, run.manifests[k].substeps);
+      }
       const std::string substeps = most == 0        ? std::string("no substep yet")
                                    : fewest == most ? fmt::format("{} substeps a frame", most)
                                                     : fmt::format("{}..{} substeps a frame", fewest, most);
-      fmt::print("frames 0..{} complete, {}, run {:016x}\n", complete, substeps, run);
+      fmt::print("frames 0..{} complete, {}, run {:016x}\n", run.complete - 1, substeps,
+                 run.manifests[run.complete - 1].fingerprint);
+      if (!run.stop.empty()) fmt::print("  then: {}\n", run.stop);
     }
-    if (!stop.empty() && complete >= 0) fmt::print("  then: {}\n", stop);
     const std::vector<std::int64_t> checkpoints = cache::checkpointFrames(dir, name);
     std::string list;
     for (const std::int64_t f : checkpoints) list += (list.empty() ? "" : ", ") + std::to_string(f);
     fmt::print("  checkpoints: {}\n", checkpoints.empty() ? std::string("none") : list);
-    // The newest intact checkpoint of a complete frame (its checksum read, as --resume does).
+    // Where --resume would start: the checkpoints it would try, newest first, until one
+    // reads intact (its checksum), as resumeFrom does before restoring.
     std::int64_t resumeAt = -1;
-    for (auto it = checkpoints.rbegin(); it != checkpoints.rend() && resumeAt < 0; ++it) {
-      if (*it > complete) continue;
-      const std::filesystem::path p = cache::checkpointPath(dir, name, *it);
+    for (const std::size_t k : run.checkpointed(dir)) {
+      const cache::Manifest& m = run.manifests[k];
+      const std::filesystem::path p = dir / m.checkpoint->path;
       try {
-        const solver::CheckpointInfo c = solver::checkpointInfo(cache::readFileBytes(p), p.string());
-        if (c.frame == *it && c.fingerprint == run) resumeAt = *it;
+        if (solver::checkpointInfo(cache::readFileBytes(p), p.string()).frame == m.frame) {
+          resumeAt = m.frame;
+          break;
+        }
       } catch (const std::exception& e) {
         fmt::print("  {}\n", e.what());
       }

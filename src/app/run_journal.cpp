@@ -81,42 +81,56 @@ void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sc
   }
 }
 
+RunFrames readRunFrames(const std::filesystem::path& outDir, const std::string& sceneName) {
+  RunFrames run;
+  bool inRow = true;
+  for (const std::int64_t f : cache::manifestFrames(outDir, sceneName)) {
+    const std::filesystem::path path = cache::manifestPath(outDir, sceneName, f);
+    try {
+      run.manifests.push_back(cache::decodeManifest(cache::readFileBytes(path), path.string()));
+    } catch (const std::exception& e) {  // InputError or IoError: this frame is not complete
+      if (inRow) run.stop = e.what();
+      inRow = false;
+      continue;
+    }
+    if (!inRow) continue;
+    const cache::Manifest& m = run.manifests.back();
+    if (m.frame != static_cast<std::int64_t>(run.complete)) {
+      run.stop = fmt::format("frame {} has no manifest", run.complete);
+      inRow = false;
+    } else if (std::string why = cache::incompleteReason(outDir, m, false); !why.empty()) {
+      run.stop = fmt::format("frame {}: {}", f, why);
+      inRow = false;
+    } else {
+      ++run.complete;
+    }
+  }
+  return run;
+}
+
+std::vector<std::size_t> RunFrames::checkpointed(const std::filesystem::path& outDir) const {
+  std::vector<std::size_t> out;
+  for (std::size_t k = complete; k-- > 0;)
+    if (manifests[k].checkpoint && cache::incompleteReason(outDir, manifests[k], true).empty()) out.push_back(k);
+  return out;
+}
+
 ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& sceneName, std::uint64_t fingerprint,
                        solver::Simulation& sim) {
   ResumePoint point;
-  const std::vector<std::int64_t> frames = cache::manifestFrames(outDir, sceneName);
-  if (frames.empty()) {
-    point.note = fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string());
-    return point;
-  }
-  // Every manifest that reads (a damaged one is skipped here and ends the complete run of
-  // frames below); the settings of the run in the folder are its newest one's.
-  std::vector<cache::Manifest> manifests;
-  for (const std::int64_t f : frames) {
-    const std::filesystem::path path = cache::manifestPath(outDir, sceneName, f);
-    try {
-      manifests.push_back(cache::decodeManifest(cache::readFileBytes(path), path.string()));
-    } catch (const InputError&) {
-    } catch (const IoError&) {
-    }
-  }
-  for (auto it = manifests.rbegin(); it != manifests.rend(); ++it)
+  const RunFrames run = readRunFrames(outDir, sceneName);
+  // The settings of the run in the folder: every manifest that reads must have ours.
+  for (auto it = run.manifests.rbegin(); it != run.manifests.rend(); ++it)
     if (it->fingerprint != fingerprint)
       throw InputError({outDir.string(), 0, "--resume"},
                        fmt::format("the folder holds frame {} of '{}' made with other settings (the scene, its "
                                    "meshes, an option or the softsub version changed)",
                                    it->frame, sceneName),
                        "the same scene and options as the run being resumed, or run without --resume to start over");
-  // The complete frames: 0, 1, 2, ... each with its manifest and every listed file.
-  std::size_t complete = 0;
-  while (complete < manifests.size() && manifests[complete].frame == static_cast<std::int64_t>(complete) &&
-         cache::incompleteReason(outDir, manifests[complete], false).empty())
-    ++complete;
-  point.completeUpTo = static_cast<std::int64_t>(complete) - 1;
+  point.completeUpTo = static_cast<std::int64_t>(run.complete) - 1;
   // The newest complete frame whose checkpoint restores.
-  for (std::size_t k = complete; k-- > 0;) {
-    const cache::Manifest& m = manifests[k];
-    if (!m.checkpoint || !cache::incompleteReason(outDir, m, true).empty()) continue;
+  for (const std::size_t k : run.checkpointed(outDir)) {
+    const cache::Manifest& m = run.manifests[k];
     const std::filesystem::path path = outDir / m.checkpoint->path;
     try {
       const std::string bytes = cache::readFileBytes(path);
@@ -131,8 +145,8 @@ ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& s
     }
   }
   if (point.note.empty())
-    point.note = complete == 0 ? fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string())
-                               : "no complete frame has a checkpoint";
+    point.note = run.complete == 0 ? fmt::format("no complete frame of '{}' in {}", sceneName, outDir.string())
+                                   : "no complete frame has a checkpoint";
   return point;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cache/manifest.h"
 #include "core/snapshot.h"
 #include "solver/simulation.h"
 
@@ -38,6 +39,19 @@ class RunJournal : public FrameObserver {
   std::string buffer_;
   std::vector<std::int64_t> checkpoints_;  ///< frames whose checkpoint this run wrote or kept
 };
+
+/// The frames a run left in a folder, as its manifests tell.
+struct RunFrames {
+  std::vector<cache::Manifest> manifests;  ///< every manifest that reads, by frame
+  std::size_t complete = 0;  ///< manifests[0, complete) are frames 0, 1, ... in a row, every file there
+  std::string stop;          ///< why the row ends there ("" when nothing follows it)
+  /// Indices of the complete frames whose manifest lists a checkpoint that is there at
+  /// its size, newest first: where a resume may start.
+  [[nodiscard]] std::vector<std::size_t> checkpointed(const std::filesystem::path& outDir) const;
+};
+
+/// Reads the manifests of `sceneName` in `outDir` (none when there are none).
+[[nodiscard]] RunFrames readRunFrames(const std::filesystem::path& outDir, const std::string& sceneName);
 
 /// Where a resumed run starts.
 struct ResumePoint {

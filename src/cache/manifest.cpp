@@ -175,6 +175,25 @@ std::vector<std::int64_t> manifestFrames(const std::filesystem::path& dir, std::
   return framesIn(dir / "manifest", sceneName, ".manifest");
 }
 
+std::vector<std::string> manifestSceneNames(const std::filesystem::path& dir) {
+  constexpr std::string_view kSuffix = ".manifest";
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir / "manifest", ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string file = it->path().filename().string();
+    if (file.size() <= kSuffix.size() || !file.ends_with(kSuffix)) continue;
+    const std::string stem = file.substr(0, file.size() - kSuffix.size());
+    const auto dot = stem.rfind('.');
+    if (dot == std::string::npos || dot == 0) continue;
+    std::string name = stem.substr(0, dot);
+    // Only names whose manifest is really a frame's (`<name>.<frame tag>.manifest`).
+    if (std::find(names.begin(), names.end(), name) == names.end() && !manifestFrames(dir, name).empty())
+      names.push_back(std::move(name));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 std::vector<std::int64_t> checkpointFrames(const std::filesystem::path& dir, std::string_view sceneName) {
   return framesIn(dir / "checkpoint", sceneName, ".state");
 }

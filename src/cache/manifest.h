@@ -51,6 +51,8 @@ struct Manifest {
 /// Frames that have a manifest of `sceneName` in `dir`, ascending (none when the folder
 /// does not exist).
 [[nodiscard]] std::vector<std::int64_t> manifestFrames(const std::filesystem::path& dir, std::string_view sceneName);
+/// The scene names with at least one frame manifest in `dir`, sorted.
+[[nodiscard]] std::vector<std::string> manifestSceneNames(const std::filesystem::path& dir);
 /// Frames that have a checkpoint of `sceneName` in `dir`, ascending.
 [[nodiscard]] std::vector<std::int64_t> checkpointFrames(const std::filesystem::path& dir, std::string_view sceneName);
 
