@@ -177,13 +177,17 @@ namespace {
 // one entry's constants replace the per-pair gather of entries. All four instances are
 // this one code path.
 //
-// A slot's partners go through in chunks, in passes that keep the indirect loads apart
-// from the arithmetic, so that the arithmetic (square root, division, clamps) runs 4 wide
-// in SIMD registers: gather the partners' offsets and their pair entries, compute
-// distances and table positions, read the table, compute the forces, then add them up in
-// partner order (the same order and the same operations per pair as a plain loop, so the
-// sums do not depend on the chunking). Branch-free: a pair listed within the skin but out
-// of range now contributes exactly 0.
+// The layer's list goes through in chunks of kChunk pairs, whatever slots they belong to
+// (a fluid at rest lists only about 9 partners a slot: chunks per slot would spend their
+// time starting and ending short loops). Each chunk runs in passes that keep the indirect
+// loads apart from the arithmetic, so that the arithmetic (square root, division, clamps)
+// runs 4 wide in SIMD registers: gather the partners' offsets and their pair entries slot
+// by slot, compute distances and table positions, read the table, compute the forces,
+// then add them up slot by slot in partner order. Each slot's sum runs across chunks and
+// is added to its force when its last partner is done: the same order and the same
+// operations per pair as a plain loop over slots and partners, so the sums do not depend
+// on the chunking. Branch-free: a pair listed within the skin but out of range now
+// contributes exactly 0.
 template <bool kVelocity, bool kOneMaterial>
 void layerPairForces(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
   constexpr std::uint32_t kChunk = 64;
@@ -203,27 +207,34 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
   float* __restrict fz = s.fz.data();
   const std::uint16_t* __restrict mat = s.material.data();
   const std::uint32_t* __restrict list = layer.partners.data();
+  const std::uint32_t* __restrict start = layer.start.data();
+  const std::uint32_t base = layer.slots.begin;
+  const std::uint32_t rows = layer.slots.end - layer.slots.begin;
+  const std::uint32_t total = start[rows];
   alignas(64) float dxs[kChunk], dys[kChunk], dzs[kChunk], cut2[kChunk], invDr[kChunk], lastK[kChunk];
   alignas(64) float dvxs[kChunk], dvys[kChunk], dvzs[kChunk], damp[kChunk], relv[kChunk];
   alignas(64) float inv[kChunk], frac[kChunk], value[kChunk], gxs[kChunk], gys[kChunk], gzs[kChunk];
   alignas(64) std::int32_t piece[kChunk], offset[kChunk];
-  for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i) {
-    const forces::PairEntry* row = entries + mat[i] * m;
-    const float xi = px[i], yi = py[i], zi = pz[i];
-    const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
-    float ax = 0, ay = 0, az = 0;
-    const std::uint32_t first = layer.start[i - layer.slots.begin], last = layer.start[i - layer.slots.begin + 1];
-    for (std::uint32_t q0 = first; q0 < last; q0 += kChunk) {
-      const std::uint32_t n = std::min(kChunk, last - q0);
-      const std::uint32_t* js = list + q0;
-      // 1. Gather: the partners' offsets and their pair entries.
-      for (std::uint32_t c = 0; c < n; ++c) {
+  // The slot whose sum is running (row), and its sum.
+  std::uint32_t row = 0;
+  float ax = 0, ay = 0, az = 0;
+  for (std::uint32_t q0 = 0; q0 < total; q0 += kChunk) {
+    const std::uint32_t n = std::min(kChunk, total - q0);
+    const std::uint32_t* js = list + q0;
+    // 1. Gather, slot by slot: the partners' offsets and their pair entries.
+    for (std::uint32_t r = row, c = 0; c < n; ++r) {
+      const std::uint32_t end = std::min(start[r + 1] - q0, n);
+      const std::uint32_t i = base + r;
+      const forces::PairEntry* rowEntries = entries + mat[i] * m;
+      const float xi = px[i], yi = py[i], zi = pz[i];
+      const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
+      for (; c < end; ++c) {
         const std::uint32_t j = js[c];
         dxs[c] = px[j] - xi;
         dys[c] = py[j] - yi;
         dzs[c] = pz[j] - zi;
         if constexpr (!kOneMaterial) {
-          const forces::PairEntry& e = row[mat[j]];
+          const forces::PairEntry& e = rowEntries[mat[j]];
           cut2[c] = e.cutoff2;
           invDr[c] = e.invDr;
           lastK[c] = static_cast<float>(e.lastPiece);
@@ -239,59 +250,72 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
           dvzs[c] = vz[j] - uzi;
         }
       }
-      // 2. Distances and table positions (SIMD). Out of range: inv = 0, so the pair adds
-      // 0; coincident particles have no direction (inv = 0): only damping acts. The
-      // position is clamped into the table (a NaN distance too: the comparison fails).
-      for (std::uint32_t c = 0; c < n; ++c) {
-        const float r2 = dxs[c] * dxs[c] + dys[c] * dys[c] + dzs[c] * dzs[c];
-        float cutoff2 = one.cutoff2, pieces = static_cast<float>(one.lastPiece), perR = one.invDr;
-        std::int32_t base = static_cast<std::int32_t>(one.offset);
-        if constexpr (!kOneMaterial) {
-          cutoff2 = cut2[c];
-          pieces = lastK[c];
-          perR = invDr[c];
-          base = offset[c];
-        }
-        const float in = r2 < cutoff2 ? 1.0f : 0.0f;
-        const float r = std::sqrt(r2);
-        // Divides unconditionally (by 1 for coincident particles) so that the loop has no
-        // branch: a division under a condition is not vectorised (it could trap).
-        const bool apart = r > 0;
-        inv[c] = (apart ? in : 0.0f) / (apart ? r : 1.0f);
-        if constexpr (kVelocity) damp[c] = (kOneMaterial ? one.damping : damp[c]) * in;
-        const float tMax = pieces + 1.0f, tr = r * perR;
-        const float t = tr < tMax ? tr : tMax;
-        const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(pieces));
-        piece[c] = base + 2 * k;
-        frac[c] = t - static_cast<float>(k);
+    }
+    // 2. Distances and table positions (SIMD). Out of range: inv = 0, so the pair adds
+    // 0; coincident particles have no direction (inv = 0): only damping acts. The
+    // position is clamped into the table (a NaN distance too: the comparison fails).
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float r2 = dxs[c] * dxs[c] + dys[c] * dys[c] + dzs[c] * dzs[c];
+      float cutoff2 = one.cutoff2, pieces = static_cast<float>(one.lastPiece), perR = one.invDr;
+      std::int32_t first = static_cast<std::int32_t>(one.offset);
+      if constexpr (!kOneMaterial) {
+        cutoff2 = cut2[c];
+        pieces = lastK[c];
+        perR = invDr[c];
+        first = offset[c];
       }
-      // 3. The sampled function (the one indirect read of the table).
-      for (std::uint32_t c = 0; c < n; ++c) {
-        const float* p = samples + piece[c];
-        value[c] = p[0] + p[1] * frac[c];
+      const float in = r2 < cutoff2 ? 1.0f : 0.0f;
+      const float r = std::sqrt(r2);
+      // Divides unconditionally (by 1 for coincident particles) so that the loop has no
+      // branch: a division under a condition is not vectorised (it could trap).
+      const bool apart = r > 0;
+      inv[c] = (apart ? in : 0.0f) / (apart ? r : 1.0f);
+      if constexpr (kVelocity) damp[c] = (kOneMaterial ? one.damping : damp[c]) * in;
+      const float tMax = pieces + 1.0f, tr = r * perR;
+      const float t = tr < tMax ? tr : tMax;
+      const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(pieces));
+      piece[c] = first + 2 * k;
+      frac[c] = t - static_cast<float>(k);
+    }
+    // 3. The sampled function (the one indirect read of the table).
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float* p = samples + piece[c];
+      value[c] = p[0] + p[1] * frac[c];
+    }
+    // 4. The pair forces (SIMD): -F n, plus the velocity terms.
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
+      float gx = -value[c] * nx, gy = -value[c] * ny, gz = -value[c] * nz;
+      if constexpr (kVelocity) {
+        const float vn = (kOneMaterial ? one.relativeVelocity : relv[c]) * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
+        gx += vn * nx + damp[c] * dvxs[c];
+        gy += vn * ny + damp[c] * dvys[c];
+        gz += vn * nz + damp[c] * dvzs[c];
       }
-      // 4. The pair forces (SIMD): -F n, plus the velocity terms.
-      for (std::uint32_t c = 0; c < n; ++c) {
-        const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
-        float gx = -value[c] * nx, gy = -value[c] * ny, gz = -value[c] * nz;
-        if constexpr (kVelocity) {
-          const float vn = (kOneMaterial ? one.relativeVelocity : relv[c]) * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
-          gx += vn * nx + damp[c] * dvxs[c];
-          gy += vn * ny + damp[c] * dvys[c];
-          gz += vn * nz + damp[c] * dvzs[c];
-        }
-        gxs[c] = gx;
-        gys[c] = gy;
-        gzs[c] = gz;
-      }
-      // 5. Newton's third law, in partner order.
-      for (std::uint32_t c = 0; c < n; ++c) {
+      gxs[c] = gx;
+      gys[c] = gy;
+      gzs[c] = gz;
+    }
+    // 5. Newton's third law, slot by slot in partner order; a slot whose partners end in
+    // this chunk gets its sum (slots without partners get their 0 here too).
+    for (std::uint32_t c = 0; c < n;) {
+      const std::uint32_t end = std::min(start[row + 1] - q0, n);
+      for (; c < end; ++c) {
         const std::uint32_t j = js[c];
         ax += gxs[c]; ay += gys[c]; az += gzs[c];
         fx[j] -= gxs[c]; fy[j] -= gys[c]; fz[j] -= gzs[c];
       }
+      if (start[row + 1] - q0 <= n) {
+        fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
+        ax = ay = az = 0;
+        ++row;
+      }
     }
-    fx[i] += ax; fy[i] += ay; fz[i] += az;
+  }
+  // Slots after the last pair (no partners, or the last row ending on a chunk boundary).
+  for (; row < rows; ++row) {
+    fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
+    ax = ay = az = 0;
   }
 }
 

@@ -1,0 +1,112 @@
+// The solver's two hot stages on their own, with no integration around them, so that a
+// change to either can be measured in isolation (docs/benchmarks.md, issue #6):
+// - BM_PairKernel: one evaluation of the pair forces from a built list
+//   (fluid::accumulatePairForces), the forces zeroed first as the solver does;
+// - BM_ListBuild: re-sorting an already sorted store into the grid and building the pair
+//   list (what every list rebuild costs when the order did not change).
+// Cases: 0 = the seed pool of 200,000 particles after one simulated second (viscous goo,
+// velocity terms), 1 = the Lennard-Jones liquid of `softsub bench lammps` (32,000 atoms,
+// fcc at density 0.8442, cutoff 2.5, no velocity terms).
+// Counters: pairs/s is listed pairs processed per second.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+
+#include "fluid/pair_forces.h"
+#include "neighbors/cell_grid.h"
+#include "solver/simulation.h"
+#include "support/scenarios.h"
+
+namespace {
+
+using namespace softsub;
+
+struct Case {
+  forces::InteractionTable table;
+  ParticleStore store;
+  float cell = 0, skin = 0;
+};
+
+// An fcc lattice of 4 cells^3 atoms at reduced density 0.8442 (LAMMPS's bench/in.lj),
+// each moved by a fixed-seed jitter of up to +-0.02, with the true LJ force cut at 2.5.
+Case ljLiquid(int cells) {
+  Case c;
+  c.table = forces::InteractionTable(1);
+  c.table.set(0, 0, {forces::LennardJonesForce{1, 1, 2.5}, 0, 0});
+  const double a = std::cbrt(4.0 / 0.8442);
+  const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+  std::uint64_t seed = 12345;
+  const auto jitter = [&seed] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<float>((static_cast<double>(seed >> 11) / 9007199254740992.0 - 0.5) * 0.04);
+  };
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      for (int k = 0; k < cells; ++k)
+        for (const auto& b : basis)
+          c.store.add(static_cast<float>((i + b[0]) * a) + jitter(), static_cast<float>((j + b[1]) * a) + jitter(),
+                      static_cast<float>((k + b[2]) * a) + jitter(), 0, 0, 0, 0, 0);
+  c.cell = 2.5f;
+  c.skin = 0.25f;  // the solver's default: a tenth of the cutoff
+  return c;
+}
+
+// The seed pool after one simulated second (fluid in motion, viscous).
+Case seedPool(std::size_t n) {
+  solver::Model model;
+  solver::State state;
+  scenarios::fluidPool(n, 1.0, 10, model, state);
+  solver::Simulation sim(model, std::move(state));
+  for (int f = 0; f < 24; ++f) sim.advanceFrame();
+  Case c;
+  c.table = model.table;
+  c.store = sim.state().particles;
+  c.cell = static_cast<float>(model.table.maxCutoff());
+  c.skin = static_cast<float>(model.pairListSkin) * c.cell;
+  return c;
+}
+
+Case& caseOf(std::int64_t which) {
+  static Case pool = seedPool(200000);
+  static Case lj = ljLiquid(20);
+  return which == 0 ? pool : lj;
+}
+
+void BM_PairKernel(benchmark::State& st) {
+  Case& c = caseOf(st.range(0));
+  neighbors::CellGrid grid;
+  grid.rebuild(c.store, c.cell + c.skin);
+  fluid::PairList list;
+  list.build(grid, c.table, c.store, c.skin);
+  ParticleStore& s = c.store;
+  for (auto _ : st) {
+    std::fill(s.fx.begin(), s.fx.end(), 0.0f);
+    std::fill(s.fy.begin(), s.fy.end(), 0.0f);
+    std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+    fluid::accumulatePairForces(list, c.table, s);
+    benchmark::DoNotOptimize(s.fx.data());
+  }
+  st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),
+                                              benchmark::Counter::kIsRate);
+  st.counters["pairs/particle"] = static_cast<double>(list.pairCount()) / static_cast<double>(s.size());
+  st.counters["list bytes/particle"] = static_cast<double>(list.memoryBytes()) / static_cast<double>(s.size());
+}
+BENCHMARK(BM_PairKernel)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+void BM_ListBuild(benchmark::State& st) {
+  Case& c = caseOf(st.range(0));
+  neighbors::CellGrid grid;
+  grid.rebuild(c.store, c.cell + c.skin);  // sorted once: the timed rebuilds find it sorted
+  fluid::PairList list;
+  for (auto _ : st) {
+    grid.rebuild(c.store, c.cell + c.skin);
+    list.build(grid, c.table, c.store, c.skin);
+    benchmark::DoNotOptimize(list.pairCount());
+  }
+  st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),
+                                              benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ListBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+}  // namespace
