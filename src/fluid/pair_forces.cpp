@@ -17,14 +17,13 @@ namespace {
 // cutoff + skin and serves several substeps. To build it, per cell the candidates (own
 // cell first, then the forward neighbour cells) are copied into a contiguous buffer;
 // per particle one loop computes squared distances over it (vectorised) and a
-// branch-free compaction keeps the partners.
+// branch-free compaction writes the partners straight into the list.
 struct Buffers {
   const float* __restrict x;
   const float* __restrict y;
   const float* __restrict z;
   float* __restrict r2;
-  const std::uint32_t* __restrict slot;
-  std::uint32_t* __restrict kept;
+  const std::uint32_t* __restrict entry;  // what the list stores for the candidate
   const std::uint32_t* __restrict owner;  // filled only when the list excludes owners
 };
 
@@ -36,14 +35,15 @@ inline void squaredDistances(const Buffers& b, std::uint32_t from, std::uint32_t
   }
 }
 
-// The slots of buffer entries [from, len) closer than sqrt(cut2) to (xi, yi, zi) go to
-// b.kept. Returns how many.
+// The list entries of buffer entries [from, len) closer than sqrt(cut2) to (xi, yi, zi)
+// go to out, which has room for len - from. Returns how many.
+template <class Out>
 inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
-                            float zi, float cut2) {
+                            float zi, float cut2, Out* __restrict out) {
   squaredDistances(b, from, len, xi, yi, zi);
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
-    b.kept[n] = b.slot[k];
+    out[n] = static_cast<Out>(b.entry[k]);
     n += b.r2[k] < cut2 ? 1u : 0u;
   }
   return n;
@@ -51,12 +51,13 @@ inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t 
 
 // filter() for a particle whose owner's particles never pair with each other (a rigid
 // body): candidates of the same owner are dropped too.
+template <class Out>
 inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
-                                  float zi, float cut2, std::uint32_t own) {
+                                  float zi, float cut2, std::uint32_t own, Out* __restrict out) {
   squaredDistances(b, from, len, xi, yi, zi);
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
-    b.kept[n] = b.slot[k];
+    out[n] = static_cast<Out>(b.entry[k]);
     n += (b.r2[k] < cut2 && b.owner[k] != own) ? 1u : 0u;
   }
   return n;
@@ -69,7 +70,7 @@ inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uin
 struct PairList::Scratch {
   struct Buffers {
     std::vector<float> x, y, z, r2;
-    std::vector<std::uint32_t> slot, kept, owner;
+    std::vector<std::uint32_t> entry, owner;
   };
   tbb::enumerable_thread_specific<Buffers> perThread;
 };
@@ -79,26 +80,28 @@ PairList::~PairList() = default;
 PairList::PairList(PairList&&) noexcept = default;
 PairList& PairList::operator=(PairList&&) noexcept = default;
 
-std::span<const std::uint32_t> PairList::partners(std::size_t i) const {
+std::vector<std::uint32_t> PairList::partners(std::size_t i) const {
   const auto end = layers_.begin() + static_cast<std::ptrdiff_t>(layerCount_);
   const auto it = std::upper_bound(layers_.begin(), end, i, [](std::size_t v, const Layer& l) { return v < l.slots.end; });
   if (it == end || i < it->slots.begin) return {};
   const std::size_t k = i - it->slots.begin;
-  return {it->partners.data() + it->start[k], it->partners.data() + it->start[k + 1]};
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t q = it->start[k]; q < it->start[k + 1]; ++q) out.push_back(it->partner(q));
+  return out;
 }
 
 std::size_t PairList::pairCount() const {
   std::size_t n = 0;
-  for (std::size_t l = 0; l < layerCount_; ++l) n += layers_[l].partners.size();
+  for (std::size_t l = 0; l < layerCount_; ++l) n += layers_[l].size();
   return n;
 }
 
 std::size_t PairList::memoryBytes() const {
   std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
-  for (const Layer& l : layers_) b += (l.start.capacity() + l.partners.capacity()) * 4;
+  for (const Layer& l : layers_) b += (l.start.capacity() + l.far.capacity()) * 4 + l.near.capacity() * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
-    b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.slot.capacity() +
-          s.kept.capacity() + s.owner.capacity()) * 4;
+    b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.entry.capacity() +
+          s.owner.capacity()) * 4;
   return b;
 }
 
@@ -131,40 +134,57 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       Layer& layer = layers_[l];
       layer.slots = gridLayers[l];
       layer.start.resize(layer.slots.end - layer.slots.begin + 1);
-      layer.partners.clear();
-      for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c) {
-        const neighbors::SlotRange own = grid.cell(c);
-        const auto forward = grid.forwardRanges(c);
-        std::uint32_t len = own.end - own.begin;
-        for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
-        if (buf.x.size() < len) {
-          for (auto* v : {&buf.x, &buf.y, &buf.z, &buf.r2}) v->resize(len);
-          for (auto* v : {&buf.slot, &buf.kept, &buf.owner}) v->resize(len);
+      // Narrow (16-bit offsets) when every candidate lies within 65,536 slots from the
+      // layer's first one.
+      std::uint32_t lowest = layer.slots.begin, highest = layer.slots.end;
+      for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c)
+        for (const neighbors::SlotRange& r : grid.forwardRanges(c)) {
+          lowest = std::min(lowest, r.begin);
+          highest = std::max(highest, r.end);
         }
-        std::uint32_t k = 0;
-        auto append = [&](std::uint32_t b, std::uint32_t e) {
-          for (std::uint32_t j = b; j < e; ++j, ++k) {
-            buf.x[k] = s.px[j]; buf.y[k] = s.py[j]; buf.z[k] = s.pz[j]; buf.slot[k] = j;
+      layer.narrow = lowest >= layer.slots.begin &&
+                     highest - layer.slots.begin <= std::min<std::uint32_t>(options.narrowSpan, 65536);
+      // The list is written in place: its vector is used up to its capacity, grown when a
+      // particle's candidates might not fit, and cut to what was listed at the end.
+      auto fill = [&](auto& out, std::uint32_t entryBase) {
+        out.resize(out.capacity());
+        std::uint32_t listed = 0;
+        for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c) {
+          const neighbors::SlotRange own = grid.cell(c);
+          const auto forward = grid.forwardRanges(c);
+          std::uint32_t len = own.end - own.begin;
+          for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
+          if (buf.x.size() < len) {
+            for (auto* v : {&buf.x, &buf.y, &buf.z, &buf.r2}) v->resize(len);
+            for (auto* v : {&buf.entry, &buf.owner}) v->resize(len);
           }
-        };
-        append(own.begin, own.end);
-        for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
-        if (exclusive)
-          for (std::uint32_t q = 0; q < len; ++q) buf.owner[q] = s.owner[buf.slot[q]];
-        const Buffers b{buf.x.data(), buf.y.data(), buf.z.data(), buf.r2.data(),
-                        buf.slot.data(), buf.kept.data(), buf.owner.data()};
-        for (std::uint32_t i = own.begin; i < own.end; ++i) {
-          layer.start[i - layer.slots.begin] = static_cast<std::uint32_t>(layer.partners.size());
-          const std::uint32_t from = i - own.begin + 1;
-          const float cut2 = rowCut2_[s.material[i]];
-          const std::uint32_t kept =
-              exclusive && s.owner[i] >= options.exclusiveOwnersFrom
-                  ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i])
-                  : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2);
-          layer.partners.insert(layer.partners.end(), buf.kept.begin(), buf.kept.begin() + kept);
+          std::uint32_t k = 0;
+          auto append = [&](std::uint32_t b, std::uint32_t e) {
+            for (std::uint32_t j = b; j < e; ++j, ++k) {
+              buf.x[k] = s.px[j]; buf.y[k] = s.py[j]; buf.z[k] = s.pz[j]; buf.entry[k] = j - entryBase;
+            }
+            if (exclusive)
+              for (std::uint32_t j = b, q = k - (e - b); j < e; ++j, ++q) buf.owner[q] = s.owner[j];
+          };
+          append(own.begin, own.end);
+          for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
+          const Buffers b{buf.x.data(), buf.y.data(), buf.z.data(), buf.r2.data(), buf.entry.data(), buf.owner.data()};
+          for (std::uint32_t i = own.begin; i < own.end; ++i) {
+            layer.start[i - layer.slots.begin] = listed;
+            const std::uint32_t from = i - own.begin + 1;
+            if (out.size() < listed + len) out.resize(std::max<std::size_t>(2 * out.size(), listed + len));
+            const float cut2 = rowCut2_[s.material[i]];
+            listed += exclusive && s.owner[i] >= options.exclusiveOwnersFrom
+                          ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed)
+                          : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, out.data() + listed);
+          }
         }
-      }
-      layer.start.back() = static_cast<std::uint32_t>(layer.partners.size());
+        out.resize(listed);
+        return listed;
+      };
+      const std::uint32_t listed = layer.narrow ? fill(layer.near, layer.slots.begin) : fill(layer.far, 0u);
+      (layer.narrow ? layer.far.clear() : layer.near.clear());
+      layer.start.back() = listed;
     }
   });
 }
@@ -188,27 +208,28 @@ namespace {
 // operations per pair as a plain loop over slots and partners, so the sums do not depend
 // on the chunking. Branch-free: a pair listed within the skin but out of range now
 // contributes exactly 0.
-template <bool kVelocity, bool kOneMaterial>
-void layerPairForces(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
+template <bool kVelocity, bool kOneMaterial, class Index>
+void layerPairForces(const PairList::Layer& layer, const Index* __restrict list, std::uint32_t jBase,
+                     const forces::InteractionTable& table, ParticleStore& s) {
   constexpr std::uint32_t kChunk = 64;
   // One material (one pair entry): its constants, instead of a gather per pair.
   const forces::PairEntry one = table.entries().front();
   const std::size_t m = table.materials();
   const forces::PairEntry* entries = table.entries().data();
   const float* __restrict samples = table.samples().data();
-  const float* __restrict px = s.px.data();
-  const float* __restrict py = s.py.data();
-  const float* __restrict pz = s.pz.data();
-  const float* __restrict vx = s.vx.data();
-  const float* __restrict vy = s.vy.data();
-  const float* __restrict vz = s.vz.data();
-  float* __restrict fx = s.fx.data();
-  float* __restrict fy = s.fy.data();
-  float* __restrict fz = s.fz.data();
-  const std::uint16_t* __restrict mat = s.material.data();
-  const std::uint32_t* __restrict list = layer.partners.data();
+  // Every slot below is counted from jBase (list entries are slots - jBase).
+  const float* __restrict px = s.px.data() + jBase;
+  const float* __restrict py = s.py.data() + jBase;
+  const float* __restrict pz = s.pz.data() + jBase;
+  const float* __restrict vx = s.vx.data() + jBase;
+  const float* __restrict vy = s.vy.data() + jBase;
+  const float* __restrict vz = s.vz.data() + jBase;
+  float* __restrict fx = s.fx.data() + jBase;
+  float* __restrict fy = s.fy.data() + jBase;
+  float* __restrict fz = s.fz.data() + jBase;
+  const std::uint16_t* __restrict mat = s.material.data() + jBase;
   const std::uint32_t* __restrict start = layer.start.data();
-  const std::uint32_t base = layer.slots.begin;
+  const std::uint32_t base = layer.slots.begin - jBase;
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
   const std::uint32_t total = start[rows];
   alignas(64) float dxs[kChunk], dys[kChunk], dzs[kChunk], cut2[kChunk], invDr[kChunk], lastK[kChunk];
@@ -220,7 +241,7 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
   float ax = 0, ay = 0, az = 0;
   for (std::uint32_t q0 = 0; q0 < total; q0 += kChunk) {
     const std::uint32_t n = std::min(kChunk, total - q0);
-    const std::uint32_t* js = list + q0;
+    const Index* js = list + q0;
     // 1. Gather, slot by slot: the partners' offsets and their pair entries.
     for (std::uint32_t r = row, c = 0; c < n; ++r) {
       const std::uint32_t end = std::min(start[r + 1] - q0, n);
@@ -319,21 +340,33 @@ void layerPairForces(const PairList::Layer& layer, const forces::InteractionTabl
   }
 }
 
+// The instance of layerPairForces for this table and this list encoding.
+template <class Index>
+void layerForces(const PairList::Layer& layer, const Index* list, std::uint32_t jBase,
+                 const forces::InteractionTable& table, ParticleStore& s) {
+  const bool velocity = table.hasVelocityTerms();
+  if (table.materials() == 1)
+    velocity ? layerPairForces<true, true>(layer, list, jBase, table, s)
+             : layerPairForces<false, true>(layer, list, jBase, table, s);
+  else
+    velocity ? layerPairForces<true, false>(layer, list, jBase, table, s)
+             : layerPairForces<false, false>(layer, list, jBase, table, s);
+}
+
 }  // namespace
 
 void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
   const auto layers = list.layers();
   // Phase by phase: a layer writes to its own slots and the next layer's, which no other
   // layer of its phase touches; each slot's force is summed in slot and phase order.
-  const bool velocity = table.hasVelocityTerms();
   for (const std::vector<std::uint32_t>& phase : list.phases()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
       for (std::size_t p = range.begin(); p != range.end(); ++p) {
         const PairList::Layer& layer = layers[phase[p]];
-        if (table.materials() == 1)
-          velocity ? layerPairForces<true, true>(layer, table, s) : layerPairForces<false, true>(layer, table, s);
+        if (layer.narrow)
+          layerForces(layer, layer.near.data(), layer.slots.begin, table, s);
         else
-          velocity ? layerPairForces<true, false>(layer, table, s) : layerPairForces<false, false>(layer, table, s);
+          layerForces(layer, layer.far.data(), 0u, table, s);
       }
     });
   }

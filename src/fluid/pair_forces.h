@@ -23,6 +23,10 @@ struct ListOptions {
   /// Pairs of two particles with the same owner >= this are not listed (the particles
   /// of one rigid body never interact). The default lists every pair.
   std::uint32_t exclusiveOwnersFrom = UINT32_MAX;
+  /// A layer whose candidates lie within this many slots from its first one keeps
+  /// 16-bit offsets (PairList::Layer); at most 65,536. Tests lower it to exercise the
+  /// 32-bit form on small inputs.
+  std::uint32_t narrowSpan = 65536;
 };
 
 class PairList {
@@ -37,19 +41,43 @@ class PairList {
   /// own partner array: the list is the same for any number of threads.
   void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
              const ParticleStore& store, float skin, const ListOptions& options = {});
-  /// Partners of slot i (finds i's layer: for tests and bookkeeping, not hot loops).
-  [[nodiscard]] std::span<const std::uint32_t> partners(std::size_t i) const;
+  /// Partners of slot i, as slots (finds i's layer and copies: for tests, not hot loops).
+  [[nodiscard]] std::vector<std::uint32_t> partners(std::size_t i) const;
+  /// Calls fn(i, j) for every listed pair, slot i ascending, each i's partners in list
+  /// order.
+  template <class Fn>
+  void forEachPair(Fn&& fn) const {
+    for (std::size_t l = 0; l < layerCount_; ++l) {
+      const Layer& layer = layers_[l];
+      for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i) {
+        const std::uint32_t k = i - layer.slots.begin;
+        for (std::uint32_t q = layer.start[k]; q < layer.start[k + 1]; ++q) fn(i, layer.partner(q));
+      }
+    }
+  }
   /// Number of listed pairs.
   [[nodiscard]] std::size_t pairCount() const;
   /// Bytes reserved.
   [[nodiscard]] std::size_t memoryBytes() const;
 
-  /// One layer of the grid: its slots, and their partners one after another
-  /// (slot slots.begin + k has partners[start[k] .. start[k + 1])).
+  /// One layer of the grid: its slots, and their partners one after another (slot
+  /// slots.begin + k has list entries start[k] .. start[k + 1]). Why two encodings: a
+  /// layer's partners lie in it and the next layer, so almost always within 65,536 slots
+  /// of its first slot; they are then kept as 16-bit offsets from it (`narrow`), which
+  /// halves the list's memory and the kernel's reads of it. Layers whose partners reach
+  /// further (very large layers, the wrap-around of the grid) keep 32-bit slots.
   struct Layer {
     neighbors::SlotRange slots;
     std::vector<std::uint32_t> start;
-    std::vector<std::uint32_t> partners;
+    bool narrow = true;
+    std::vector<std::uint16_t> near;  ///< narrow: partner slot - slots.begin
+    std::vector<std::uint32_t> far;   ///< otherwise: partner slot
+    /// The slot of list entry q.
+    [[nodiscard]] std::uint32_t partner(std::uint32_t q) const {
+      return narrow ? slots.begin + near[q] : far[q];
+    }
+    /// Number of list entries.
+    [[nodiscard]] std::size_t size() const { return start.empty() ? 0 : start.back(); }
   };
   [[nodiscard]] std::span<const Layer> layers() const { return {layers_.data(), layerCount_}; }
   /// The layers grouped in phases (CellGrid::layersByPhase, copied at build): a pair of

@@ -153,11 +153,9 @@ void Simulation::listRigidPairs() {
   rigidPairs_.clear();
   const std::uint32_t first = model_.bodies.firstEntity;
   const std::uint32_t* owner = s.owner.data();
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const bool bodyI = owner[i] >= first;
-    for (const std::uint32_t j : list_.partners(i))
-      if (bodyI || owner[j] >= first) rigidPairs_.push_back({static_cast<std::uint32_t>(i), j});
-  }
+  list_.forEachPair([&](std::uint32_t i, std::uint32_t j) {
+    if (owner[i] >= first || owner[j] >= first) rigidPairs_.push_back({i, j});
+  });
 }
 
 void Simulation::stepBodies(double dt) {

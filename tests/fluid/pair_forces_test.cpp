@@ -184,5 +184,44 @@ TEST(PairForces, ConservativeModelWithASkinMatchesTheReference) {
   EXPECT_GT(beyond, 100u);
 }
 
+// A layer keeps 16-bit partner offsets when its candidates lie within 65,536 slots,
+// 32-bit slots otherwise (narrowSpan 0 forces those): the two encodings list the same
+// partners in the same order and give bitwise the same forces, for the kernel's
+// instances with and without velocity terms, one material and several.
+TEST(PairList, SixteenAndThirtyTwoBitEntriesGiveTheSameForces) {
+  forces::InteractionTable lj(1);
+  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  for (const forces::InteractionTable& table : {threeMaterials(), lj}) {
+    ParticleStore s = scenarios::randomCloud(2000, -5, 5, 2.0f, static_cast<std::uint16_t>(table.materials()), 3);
+    const float skin = 0.3f;
+    neighbors::CellGrid grid;
+    grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+    PairList narrow, wide;
+    narrow.build(grid, table, s, skin);
+    ListOptions wideOptions;
+    wideOptions.narrowSpan = 0;
+    wide.build(grid, table, s, skin, wideOptions);
+    std::size_t narrowLayers = 0;
+    for (const PairList::Layer& l : narrow.layers()) narrowLayers += l.narrow ? 1 : 0;
+    for (const PairList::Layer& l : wide.layers()) EXPECT_FALSE(l.narrow);
+    // The cloud straddles 0, so the grid's last layer (negative z, wrapped to the top of
+    // the key range) pairs with its first one: that layer stays 32-bit, the others not.
+    EXPECT_GT(narrowLayers, 0u);
+    ASSERT_GT(narrow.pairCount(), 10000u);
+    EXPECT_EQ(narrow.pairCount(), wide.pairCount());
+    for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(narrow.partners(i), wide.partners(i)) << i;
+    EXPECT_LT(narrow.memoryBytes(), wide.memoryBytes());
+    ParticleStore a = s, b = s;
+    zeroForces(a);
+    zeroForces(b);
+    accumulatePairForces(narrow, table, a);
+    accumulatePairForces(wide, table, b);
+    EXPECT_EQ(a.fx, b.fx);
+    EXPECT_EQ(a.fy, b.fy);
+    EXPECT_EQ(a.fz, b.fz);
+    expectMatchesReference(table, a);
+  }
+}
+
 }  // namespace
 }  // namespace softsub::fluid
