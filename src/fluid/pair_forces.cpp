@@ -71,6 +71,8 @@ struct PairList::Scratch {
   struct Buffers {
     std::vector<float> x, y, z, r2;
     std::vector<std::uint32_t> entry, owner;
+    std::vector<neighbors::SlotRange> ranges;  // the forward ranges of one layer's cells
+    std::vector<std::uint32_t> rangeStart;     // each cell's first in ranges
   };
   tbb::enumerable_thread_specific<Buffers> perThread;
 };
@@ -101,7 +103,7 @@ std::size_t PairList::memoryBytes() const {
   for (const Layer& l : layers_) b += (l.start.capacity() + l.far.capacity()) * 4 + l.near.capacity() * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.entry.capacity() +
-          s.owner.capacity()) * 4;
+          s.owner.capacity() + s.rangeStart.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
   return b;
 }
 
@@ -130,18 +132,27 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
     Scratch::Buffers& buf = scratch_->perThread.local();
+    neighbors::CellGrid::ForwardRanges forwardRanges(grid);
     for (std::size_t l = range.begin(); l != range.end(); ++l) {
       Layer& layer = layers_[l];
       layer.slots = gridLayers[l];
       layer.start.resize(layer.slots.end - layer.slots.begin + 1);
       // Narrow (16-bit offsets) when every candidate lies within 65,536 slots from the
       // layer's first one.
+      // The layer's cells' forward ranges are found once (the walker) and kept for the
+      // fill below.
       std::uint32_t lowest = layer.slots.begin, highest = layer.slots.end;
-      for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c)
-        for (const neighbors::SlotRange& r : grid.forwardRanges(c)) {
+      buf.ranges.clear();
+      buf.rangeStart.clear();
+      for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c) {
+        buf.rangeStart.push_back(static_cast<std::uint32_t>(buf.ranges.size()));
+        for (const neighbors::SlotRange& r : forwardRanges.of(c)) {
           lowest = std::min(lowest, r.begin);
           highest = std::max(highest, r.end);
+          buf.ranges.push_back(r);
         }
+      }
+      buf.rangeStart.push_back(static_cast<std::uint32_t>(buf.ranges.size()));
       layer.narrow = lowest >= layer.slots.begin &&
                      highest - layer.slots.begin <= std::min<std::uint32_t>(options.narrowSpan, 65536);
       // The list is written in place: its vector is used up to its capacity, grown when a
@@ -151,7 +162,9 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
         std::uint32_t listed = 0;
         for (std::size_t c = firstCell_[l]; c < firstCell_[l + 1]; ++c) {
           const neighbors::SlotRange own = grid.cell(c);
-          const auto forward = grid.forwardRanges(c);
+          const std::size_t cl = c - firstCell_[l];
+          const std::span<const neighbors::SlotRange> forward(buf.ranges.data() + buf.rangeStart[cl],
+                                                              buf.ranges.data() + buf.rangeStart[cl + 1]);
           std::uint32_t len = own.end - own.begin;
           for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
           if (buf.x.size() < len) {

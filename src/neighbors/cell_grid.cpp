@@ -75,53 +75,58 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
   }
   buildCells();
   buildHash();
+}
 
-  // Forward neighbour ranges of every cell. The 13 forward cells lie in 5 rows of
-  // constant (y, z); since cells are sorted by (z, y, x) and each row's target keys grow
-  // with c, one cursor per offset walks the sorted cell keys (amortised O(1) per lookup).
-  // Offsets that wrap around the 21-bit torus use the hash table instead.
-  const std::size_t cells = cellCount();
-  rangeStart_.resize(cells + 1);
-  ranges_.clear();
-  std::array<std::uint32_t, 13> found{};
-  std::array<std::size_t, 13> cursor{};
-  const std::uint64_t* keys = cellKey_.data();
-  for (std::size_t c = 0; c < cells; ++c) {
-    rangeStart_[c] = static_cast<std::uint32_t>(ranges_.size());
-    const std::uint64_t k = keys[c];
-    const std::uint64_t x = k & kMask, y = (k >> kBits) & kMask, z = k >> (2 * kBits);
-    std::size_t nf = 0;
-    for (std::size_t o = 0; o < kForward.size(); ++o) {
-      const auto& off = kForward[o];
-      const std::uint64_t nx = x + static_cast<std::uint64_t>(off[2]);
-      const std::uint64_t ny = y + static_cast<std::uint64_t>(off[1]);
-      const std::uint64_t nz = z + static_cast<std::uint64_t>(off[0]);
-      const bool wraps = ((nx | ny | nz) & ~kMask) != 0;
-      const std::uint64_t nk = pack(nx & kMask, ny & kMask, nz & kMask);
-      std::int64_t cell = -1;
-      if (wraps) {
-        cell = findCell(nk);
-      } else {
-        std::size_t& cur = cursor[o];
-        if (cur > 0 && keys[cur - 1] >= nk)  // only after a wrapped stretch: re-seek
-          cur = static_cast<std::size_t>(std::lower_bound(keys, keys + cells, nk) - keys);
-        while (cur < cells && keys[cur] < nk) ++cur;
-        if (cur < cells && keys[cur] == nk) cell = static_cast<std::int64_t>(cur);
+// The 13 forward cells lie in 5 rows of constant (y, z); since cells are sorted by
+// (z, y, x) and each row's target keys grow with c, one cursor per offset walks the
+// sorted cell keys (amortised O(1) per lookup when cells come in order; a jump seeks).
+// Offsets that wrap around the 21-bit torus use the hash table instead.
+std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
+  const CellGrid& g = *grid_;
+  const std::size_t cells = g.cellCount();
+  const std::uint64_t* keys = g.cellKey_.data();
+  // After a jump every cursor seeks (lower_bound) the first time it is used again.
+  if (previous_ == SIZE_MAX || c != previous_ + 1) unseeked_ = (1u << kForward.size()) - 1;
+  previous_ = c;
+  std::array<std::uint32_t, 13> found;  // the first nf are set
+  const std::uint64_t k = keys[c];
+  const std::uint64_t x = k & kMask, y = (k >> kBits) & kMask, z = k >> (2 * kBits);
+  std::size_t nf = 0;
+  for (std::size_t o = 0; o < kForward.size(); ++o) {
+    const auto& off = kForward[o];
+    const std::uint64_t nx = x + static_cast<std::uint64_t>(off[2]);
+    const std::uint64_t ny = y + static_cast<std::uint64_t>(off[1]);
+    const std::uint64_t nz = z + static_cast<std::uint64_t>(off[0]);
+    const bool wraps = ((nx | ny | nz) & ~kMask) != 0;
+    const std::uint64_t nk = pack(nx & kMask, ny & kMask, nz & kMask);
+    std::int64_t cell = -1;
+    if (wraps) {
+      cell = g.findCell(nk);
+    } else {
+      std::size_t cur = cursor_[o];  // a local: the walk below stays in a register
+      const bool unseeked = (unseeked_ >> o) & 1u;
+      if (unseeked || (cur > 0 && keys[cur - 1] >= nk)) {  // after a jump or a wrapped stretch
+        cur = static_cast<std::size_t>(std::lower_bound(keys, keys + cells, nk) - keys);
+        unseeked_ &= ~(1u << o);
       }
-      if (cell >= 0 && static_cast<std::size_t>(cell) != c) found[nf++] = static_cast<std::uint32_t>(cell);
+      while (cur < cells && keys[cur] < nk) ++cur;
+      if (cur < cells && keys[cur] == nk) cell = static_cast<std::int64_t>(cur);
+      cursor_[o] = cur;
     }
-    // At most 13 entries: an insertion sort (cell indices are distinct: keys differ).
-    for (std::size_t a = 1; a < nf; ++a)
-      for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
-    for (std::size_t f = 0; f < nf; ++f) {
-      const SlotRange r{cellStart_[found[f]], cellStart_[found[f] + 1]};
-      if (ranges_.size() > rangeStart_[c] && ranges_.back().end == r.begin)
-        ranges_.back().end = r.end;
-      else
-        ranges_.push_back(r);
-    }
+    if (cell >= 0 && static_cast<std::size_t>(cell) != c) found[nf++] = static_cast<std::uint32_t>(cell);
   }
-  rangeStart_[cells] = static_cast<std::uint32_t>(ranges_.size());
+  // At most 13 entries: an insertion sort (cell indices are distinct: keys differ).
+  for (std::size_t a = 1; a < nf; ++a)
+    for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
+  std::size_t n = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const SlotRange r{g.cellStart_[found[f]], g.cellStart_[found[f] + 1]};
+    if (n > 0 && ranges_[n - 1].end == r.begin)
+      ranges_[n - 1].end = r.end;
+    else
+      ranges_[n++] = r;
+  }
+  return {ranges_.data(), n};
 }
 
 // Stable sort of the particle slots by key. Nearly sorted input (the usual case from
@@ -237,7 +242,6 @@ std::int64_t CellGrid::findCell(std::uint64_t key) const {
 std::size_t CellGrid::memoryBytes() const {
   return keys_.capacity() * 8 + keysTmp_.capacity() * 8 + order_.capacity() * 4 +
          orderTmp_.capacity() * 4 + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
-         rangeStart_.capacity() * 4 + ranges_.capacity() * sizeof(SlotRange) +
          hashKeys_.capacity() * 8 + hashCells_.capacity() * 4;
 }
 

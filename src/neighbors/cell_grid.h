@@ -1,6 +1,7 @@
 #pragma once
 /// The neighbour grid: particles sorted by cell, neighbour cells found by walking the
 /// sorted cell keys. Memory is O(particles) whatever the spatial extent.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,12 +40,29 @@ class CellGrid {
   [[nodiscard]] SlotRange cell(std::size_t c) const {
     return {cellStart_[c], cellStart_[c + 1]};
   }
-  /// Slot ranges of cell c's forward neighbour cells (merged where contiguous). Pairs
-  /// (i in cell c, j in these ranges) plus pairs i < j inside cell c are every
-  /// candidate pair exactly once.
-  [[nodiscard]] std::span<const SlotRange> forwardRanges(std::size_t c) const {
-    return {ranges_.data() + rangeStart_[c], ranges_.data() + rangeStart_[c + 1]};
-  }
+  /// Finds the slot ranges of a cell's forward neighbour cells (merged where
+  /// contiguous). Pairs (i in cell c, j in these ranges) plus pairs i < j inside cell c
+  /// are every candidate pair exactly once.
+  ///
+  /// Why a walker and not a stored table: the ranges are found by walking the sorted
+  /// cell keys, one cursor per forward offset, which costs amortised O(1) per cell when
+  /// cells are visited in ascending order. Each task of a parallel pass (the pair list:
+  /// one layer each) walks its own cells, so the ranges are never stored (16 bytes a
+  /// particle saved) and never found serially. Cheap to make: one per task.
+  class ForwardRanges {
+   public:
+    explicit ForwardRanges(const CellGrid& grid) : grid_(&grid) {}
+    /// Cell c's forward ranges, valid until the next call. Fastest when c is the cell
+    /// after the previous call's; any order is correct.
+    std::span<const SlotRange> of(std::size_t c);
+
+   private:
+    const CellGrid* grid_;
+    std::size_t previous_ = SIZE_MAX;
+    std::uint32_t unseeked_ = 0;  // bit o: cursor o has not been placed since the last jump
+    std::array<std::size_t, 13> cursor_{};
+    std::array<SlotRange, 13> ranges_{};
+  };
   /// Slot ranges of the layers: the cells of one z coordinate (the sort key's major
   /// axis) are contiguous slots. A cell's forward neighbours lie in its own layer or the
   /// next one, so the pairs of layers k and k + 2 never share a particle: the basis for
@@ -64,11 +82,13 @@ class CellGrid {
   /// Calls fn(i, j) for every candidate pair (i != j, each unordered pair once).
   template <class Fn>
   void forEachCandidatePair(Fn&& fn) const {
+    ForwardRanges forward(*this);
     for (std::size_t c = 0; c < cellCount(); ++c) {
       const SlotRange own = cell(c);
+      const std::span<const SlotRange> ranges = forward.of(c);
       for (std::uint32_t i = own.begin; i < own.end; ++i) {
         for (std::uint32_t j = i + 1; j < own.end; ++j) fn(i, j);
-        for (const SlotRange& r : forwardRanges(c))
+        for (const SlotRange& r : ranges)
           for (std::uint32_t j = r.begin; j < r.end; ++j) fn(i, j);
       }
     }
@@ -89,8 +109,6 @@ class CellGrid {
   std::vector<std::uint32_t> order_, orderTmp_;
   std::vector<std::uint32_t> cellStart_;   // cellCount()+1 slot offsets
   std::vector<std::uint64_t> cellKey_;     // key of each cell
-  std::vector<std::uint32_t> rangeStart_;  // cellCount()+1 offsets into ranges_
-  std::vector<SlotRange> ranges_;
   std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two
   std::vector<std::uint32_t> hashCells_;
   std::vector<SlotRange> layers_;

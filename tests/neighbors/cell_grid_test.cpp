@@ -135,5 +135,30 @@ TEST(CellGrid, EmptyAndSingle) {
   EXPECT_TRUE(gridPairs(g, s, 1.0f, nullptr).empty());
 }
 
+// The forward ranges do not depend on the order the cells are visited in: a walker that
+// jumps around (random order, repeats, backwards) finds what an ascending walk finds,
+// the cloud straddling the 21-bit wrap included.
+TEST(CellGrid, ForwardRangesAreTheSameInAnyVisitOrder) {
+  ParticleStore s = cloud(3000, -6, 6, 21);
+  CellGrid g;
+  g.rebuild(s, 1.1f);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> ascending(g.cellCount());
+  CellGrid::ForwardRanges walk(g);
+  for (std::size_t c = 0; c < g.cellCount(); ++c)
+    for (const SlotRange& r : walk.of(c)) ascending[c].emplace_back(r.begin, r.end);
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<std::size_t> pick(0, g.cellCount() - 1);
+  CellGrid::ForwardRanges jumping(g);
+  std::size_t nonEmpty = 0;
+  for (int k = 0; k < 5000; ++k) {
+    const std::size_t c = k % 7 == 0 ? g.cellCount() - 1 - static_cast<std::size_t>(k) % g.cellCount() : pick(rng);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
+    for (const SlotRange& r : jumping.of(c)) got.emplace_back(r.begin, r.end);
+    ASSERT_EQ(got, ascending[c]) << "cell " << c;
+    nonEmpty += got.empty() ? 0 : 1;
+  }
+  EXPECT_GT(nonEmpty, 4000u);
+}
+
 }  // namespace
 }  // namespace softsub::neighbors
