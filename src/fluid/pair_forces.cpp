@@ -196,7 +196,12 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
         return listed;
       };
       const std::uint32_t listed = layer.narrow ? fill(layer.near, layer.slots.begin) : fill(layer.far, 0u);
-      (layer.narrow ? layer.far.clear() : layer.near.clear());
+      // The other encoding's memory is given back (it is empty unless the layer just
+      // changed encoding: a layer near the 65,536-slot span would otherwise keep both).
+      if (layer.narrow)
+        std::vector<std::uint32_t>().swap(layer.far);
+      else
+        std::vector<std::uint16_t>().swap(layer.near);
       layer.start.back() = listed;
     }
   });

@@ -105,11 +105,15 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
     } else {
       std::size_t cur = cursor_[o];  // a local: the walk below stays in a register
       const bool unseeked = (unseeked_ >> o) & 1u;
-      if (unseeked || (cur > 0 && keys[cur - 1] >= nk)) {  // after a jump or a wrapped stretch
+      // After a jump. (The second test is defensive: for cells in ascending order an
+      // offset's targets only grow, and wrapped targets never move the cursor.)
+      if (unseeked || (cur > 0 && keys[cur - 1] >= nk)) {
         cur = static_cast<std::size_t>(std::lower_bound(keys, keys + cells, nk) - keys);
         unseeked_ &= ~(1u << o);
       }
+      const std::size_t from = cur;
       while (cur < cells && keys[cur] < nk) ++cur;
+      steps_ += cur - from;
       if (cur < cells && keys[cur] == nk) cell = static_cast<std::int64_t>(cur);
       cursor_[o] = cur;
     }

@@ -55,10 +55,13 @@ class CellGrid {
     /// Cell c's forward ranges, valid until the next call. Fastest when c is the cell
     /// after the previous call's; any order is correct.
     std::span<const SlotRange> of(std::size_t c);
+    /// Cursor steps taken so far (tests: a walk stays short after a jump).
+    [[nodiscard]] std::size_t steps() const { return steps_; }
 
    private:
     const CellGrid* grid_;
     std::size_t previous_ = SIZE_MAX;
+    std::size_t steps_ = 0;
     std::uint32_t unseeked_ = 0;  // bit o: cursor o has not been placed since the last jump
     std::array<std::size_t, 13> cursor_{};
     std::array<SlotRange, 13> ranges_{};

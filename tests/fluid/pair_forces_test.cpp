@@ -207,6 +207,7 @@ TEST(PairList, SixteenAndThirtyTwoBitEntriesGiveTheSameForces) {
     // The cloud straddles 0, so the grid's last layer (negative z, wrapped to the top of
     // the key range) pairs with its first one: that layer stays 32-bit, the others not.
     EXPECT_GT(narrowLayers, 0u);
+    EXPECT_FALSE(narrow.layers().back().narrow);
     ASSERT_GT(narrow.pairCount(), 10000u);
     EXPECT_EQ(narrow.pairCount(), wide.pairCount());
     for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(narrow.partners(i), wide.partners(i)) << i;
@@ -220,6 +221,123 @@ TEST(PairList, SixteenAndThirtyTwoBitEntriesGiveTheSameForces) {
     EXPECT_EQ(a.fy, b.fy);
     EXPECT_EQ(a.fz, b.fz);
     expectMatchesReference(table, a);
+  }
+}
+
+// The kernel's sums, bit for bit, against a plain scalar loop with the same operations
+// per pair in the order the kernel promises: phase by phase, layer by layer, slot by slot,
+// partner by partner, each slot's sum added after its last partner. Catches any change of
+// summation order (chunking, threads) that the reference tolerance would not.
+void plainLoopForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
+  const bool velocity = table.hasVelocityTerms();
+  const float* samples = table.samples().data();
+  for (const std::vector<std::uint32_t>& phase : list.phases())
+    for (const std::uint32_t l : phase) {
+      const PairList::Layer& layer = list.layers()[l];
+      for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i) {
+        float ax = 0, ay = 0, az = 0;
+        const std::uint32_t k0 = i - layer.slots.begin;
+        for (std::uint32_t q = layer.start[k0]; q < layer.start[k0 + 1]; ++q) {
+          const std::uint32_t j = layer.partner(q);
+          const forces::PairEntry& e = table.entry(s.material[i], s.material[j]);
+          const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+          const float r2 = dx * dx + dy * dy + dz * dz;
+          const float in = r2 < e.cutoff2 ? 1.0f : 0.0f;
+          const float r = std::sqrt(r2);
+          const bool apart = r > 0;
+          const float inv = (apart ? in : 0.0f) / (apart ? r : 1.0f);
+          const float pieces = static_cast<float>(e.lastPiece);
+          const float tMax = pieces + 1.0f, tr = r * e.invDr;
+          const float t = tr < tMax ? tr : tMax;
+          const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(pieces));
+          const float* p = samples + e.offset + 2 * k;
+          const float value = p[0] + p[1] * (t - static_cast<float>(k));
+          const float nx = dx * inv, ny = dy * inv, nz = dz * inv;
+          float gx = -value * nx, gy = -value * ny, gz = -value * nz;
+          if (velocity) {
+            const float dvx = s.vx[j] - s.vx[i], dvy = s.vy[j] - s.vy[i], dvz = s.vz[j] - s.vz[i];
+            const float damp = e.damping * in;
+            const float vn = e.relativeVelocity * (dvx * nx + dvy * ny + dvz * nz);
+            gx += vn * nx + damp * dvx;
+            gy += vn * ny + damp * dvy;
+            gz += vn * nz + damp * dvz;
+          }
+          ax += gx; ay += gy; az += gz;
+          s.fx[j] -= gx; s.fy[j] -= gy; s.fz[j] -= gz;
+        }
+        s.fx[i] += ax; s.fy[i] += ay; s.fz[i] += az;
+      }
+    }
+}
+
+TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
+  forces::InteractionTable lj(1);
+  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  forces::InteractionTable goo(1);
+  goo.set(0, 0, {ownFunction(FluidParams{}), 1.5, 0});
+  int checked = 0;
+  for (const forces::InteractionTable& table : {threeMaterials(), lj, goo})
+    for (const float hi : {3.0f, 6.0f}) {  // dense (long rows, chunks of 64 full) and sparse
+      ParticleStore s = scenarios::randomCloud(2500, -hi, hi, 2.0f, static_cast<std::uint16_t>(table.materials()), 9);
+      const float skin = 0.25f;
+      neighbors::CellGrid grid;
+      grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+      PairList list;
+      list.build(grid, table, s, skin);
+      ParticleStore a = s, b = s;
+      zeroForces(a);
+      zeroForces(b);
+      accumulatePairForces(list, table, a);
+      plainLoopForces(list, table, b);
+#if defined(__FMA__)
+      // With FMA the compiler may fuse differently in the two loops: rounding only.
+      for (std::size_t i = 0; i < s.size(); ++i) ASSERT_NEAR(a.fx[i], b.fx[i], 1e-3f * (1 + std::abs(b.fx[i])));
+#else
+      EXPECT_EQ(a.fx, b.fx);
+      EXPECT_EQ(a.fy, b.fy);
+      EXPECT_EQ(a.fz, b.fz);
+#endif
+      ++checked;
+    }
+  EXPECT_EQ(checked, 6);
+}
+
+// At the boundary of the 16-bit form: two layers of 256 x 128 cells, one particle each,
+// one cell apart in z with their particles 0.02 apart, span exactly 65,536 slots, so the
+// first layer stays 16-bit with a partner at offset 65,535; one particle more in the
+// second layer makes the first one 32-bit. Same partners, same forces either way.
+TEST(PairList, SixteenBitFormHoldsUpToItsLastOffset) {
+  forces::InteractionTable table(1);
+  table.set(0, 0, {forces::Linear{5, 0.5, 0, 5}, 0, 0});
+  for (const bool extra : {false, true}) {
+    ParticleStore s;
+    for (const float z : {0.99f, 1.01f})
+      for (int y = 0; y < 128; ++y)
+        for (int x = 0; x < 256; ++x) s.add(x + 0.5f, y + 0.5f, z, 0, 0, 0, 0, 0);
+    if (extra) s.add(256.5f, 0.5f, 1.01f, 0, 0, 0, 0, 0);
+    neighbors::CellGrid grid;
+    grid.rebuild(s, 1.0f);
+    ASSERT_EQ(grid.layers().size(), 2u);
+    PairList list;
+    list.build(grid, table, s, 0.0f);
+    const PairList::Layer& first = list.layers()[0];
+    EXPECT_EQ(first.narrow, !extra);
+    std::uint32_t last = 0;
+    for (std::size_t q = 0; q < first.size(); ++q) last = std::max(last, first.partner(static_cast<std::uint32_t>(q)));
+    EXPECT_EQ(last, extra ? 65535u + 1u : 65535u);  // the extra particle sorts before the top row's last cell
+    EXPECT_EQ(list.pairCount(), 32768u);
+    PairList wide;
+    ListOptions wideOptions;
+    wideOptions.narrowSpan = 0;
+    wide.build(grid, table, s, 0.0f, wideOptions);
+    for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(list.partners(i), wide.partners(i)) << i;
+    ParticleStore a = s, b = s;
+    zeroForces(a);
+    zeroForces(b);
+    accumulatePairForces(list, table, a);
+    accumulatePairForces(wide, table, b);
+    EXPECT_EQ(a.fz, b.fz);
+    EXPECT_LT(a.fz[0], 0.0f);  // the lower particle is pushed down, away from its partner
   }
 }
 

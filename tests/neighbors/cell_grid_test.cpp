@@ -162,6 +162,28 @@ TEST(CellGrid, ForwardRangesAreTheSameInAnyVisitOrder) {
   EXPECT_GT(nonEmpty, 4000u);
 }
 
+// After a jump each cursor seeks before it walks: a fresh walker that starts in the middle
+// of the cells (as each task of the parallel list build does) steps over a few cells per
+// cell visited, not over every cell before it.
+TEST(CellGrid, ForwardRangesSeekAfterAJump) {
+  ParticleStore s = cloud(20000, 0, 40, 5);
+  CellGrid g;
+  g.rebuild(s, 1.0f);
+  ASSERT_GT(g.cellCount(), 10000u);
+  for (const std::size_t start : {g.cellCount() / 2, g.cellCount() - 200}) {
+    CellGrid::ForwardRanges walk(g);
+    for (std::size_t c = start; c < start + 100; ++c) walk.of(c);
+    EXPECT_LT(walk.steps(), 13u * 100u * 4u) << "from cell " << start;
+  }
+  // The same walker, jumping back and then forward again.
+  CellGrid::ForwardRanges walk(g);
+  for (const std::size_t start : {std::size_t{0}, g.cellCount() / 2, std::size_t{100}, g.cellCount() - 200}) {
+    const std::size_t before = walk.steps();
+    for (std::size_t c = start; c < start + 100; ++c) walk.of(c);
+    EXPECT_LT(walk.steps() - before, 13u * 100u * 4u) << "after jumping to cell " << start;
+  }
+}
+
 // Rebuilding after particles moved puts the store in the order by (cell key, previous
 // slot): cells ascending in (z, y, x), and the particles of one cell in the order they
 // had. Checked for a few moved particles (the nearly-sorted path), many (the radix sort)
