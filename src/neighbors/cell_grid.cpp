@@ -18,11 +18,16 @@ constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 
 // floor(x / h) as an integer, safe for any float (NaN and huge values included):
 // values are clamped far beyond any useful range before the conversion.
-inline std::uint64_t wrappedCoord(float x, float invH) {
+inline std::int64_t cellCoord(float x, float invH) {
   double c = std::floor(static_cast<double>(x) * static_cast<double>(invH));
   if (!(c > -1e15)) c = -1e15;  // also catches NaN
   if (c > 1e15) c = 1e15;
-  return static_cast<std::uint64_t>(static_cast<std::int64_t>(c)) & kMask;
+  return static_cast<std::int64_t>(c);
+}
+
+// A cell coordinate counted from the origin, wrapped to 21 bits.
+inline std::uint64_t wrappedCoord(float x, float invH, std::int64_t origin) {
+  return static_cast<std::uint64_t>(cellCoord(x, invH) - origin) & kMask;
 }
 
 inline std::uint64_t pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
@@ -53,13 +58,54 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
   const std::size_t n = store.size();
   const float invH = 1.0f / cellSize;
   keys_.resize(n);
+  using Range = tbb::blocked_range<std::size_t>;
+  // The lowest and highest cell coordinates (exact, so the same for any split; a NaN
+  // counts as the lowest possible). Coordinates are counted from the lowest: when every
+  // axis spans fewer than 2^21 - 1 cells nothing wraps (the usual case), so the order is
+  // that of the true cell coordinates and no hash of cells is needed.
+  struct Span {
+    std::array<std::int64_t, 3> lo{INT64_MAX, INT64_MAX, INT64_MAX}, hi{INT64_MIN, INT64_MIN, INT64_MIN};
+    void add(const Span& o) {
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], o.lo[a]);
+        hi[a] = std::max(hi[a], o.hi[a]);
+      }
+    }
+  };
+  const Span span = tbb::parallel_reduce(
+      Range(0, n, 8192), Span{},
+      [&](const Range& r, Span sp) {
+        const float* p[3] = {store.px.data(), store.py.data(), store.pz.data()};
+        for (int a = 0; a < 3; ++a) {
+          float lo = INFINITY, hi = -INFINITY;
+          bool nan = false;
+          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const float x = p[a][i];
+            nan = nan || !(x == x);
+            lo = std::min(lo, x);
+            hi = std::max(hi, x);
+          }
+          // floor is monotonic: the extreme coordinates are those of the extreme values.
+          sp.lo[a] = std::min(sp.lo[a], nan ? cellCoord(NAN, invH) : cellCoord(lo, invH));
+          sp.hi[a] = std::max(sp.hi[a], cellCoord(hi, invH));
+        }
+        return sp;
+      },
+      [](Span a, const Span& b) {
+        a.add(b);
+        return a;
+      });
+  torus_ = false;
+  for (int a = 0; a < 3; ++a) {
+    origin_[a] = n > 0 ? span.lo[a] : 0;
+    if (n > 0 && span.hi[a] - span.lo[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
+  }
   // Keys in parallel over fixed blocks (each key is written once), then whether they are
   // already in order: a logical "and", the same for any split.
-  using Range = tbb::blocked_range<std::size_t>;
   tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i)
-      keys_[i] = pack(wrappedCoord(store.px[i], invH), wrappedCoord(store.py[i], invH),
-                      wrappedCoord(store.pz[i], invH));
+      keys_[i] = pack(wrappedCoord(store.px[i], invH, origin_[0]), wrappedCoord(store.py[i], invH, origin_[1]),
+                      wrappedCoord(store.pz[i], invH, origin_[2]));
   });
   const bool sorted = tbb::parallel_reduce(
       Range(1, std::max<std::size_t>(n, 1), 8192), true,
@@ -74,7 +120,7 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
     store.permute(order_);
   }
   buildCells();
-  buildHash();
+  if (torus_) buildHash();
 }
 
 // The 13 forward cells lie in 5 rows of constant (y, z); since cells are sorted by
@@ -101,7 +147,8 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
     const std::uint64_t nk = pack(nx & kMask, ny & kMask, nz & kMask);
     std::int64_t cell = -1;
     if (wraps) {
-      cell = g.findCell(nk);
+      // Without wrapping (no torus) a coordinate past the ends is no cell at all.
+      cell = g.torus_ ? g.findCell(nk) : -1;
     } else {
       std::size_t cur = cursor_[o];  // a local: the walk below stays in a register
       const bool unseeked = (unseeked_ >> o) & 1u;

@@ -18,8 +18,10 @@ struct SlotRange {
 
 /// Uniform cell list; the caller picks the cell size (the solver: longest cutoff + skin).
 ///
-/// Why this layout: cell coordinates are wrapped to 21 bits per axis and packed into
-/// one 64-bit key (z, y, x). Sorting particles by key puts each cell's particles next
+/// Why this layout: cell coordinates, counted from the lowest occupied cell of each axis,
+/// are wrapped to 21 bits per axis and packed into one 64-bit key (z, y, x); they wrap
+/// only when an axis spans 2^21 - 1 cells or more (a particle flung far away), and only
+/// then is a hash of the occupied cells built for the offsets that wrap. Sorting particles by key puts each cell's particles next
 /// to each other and keeps rows of cells contiguous, so the three cells (x-1..x+1) of a
 /// neighbouring row usually form a single slot range. Wrapping can only make far-apart
 /// cells share a key (then the distance test rejects their pairs); it never separates
@@ -117,6 +119,8 @@ class CellGrid {
   std::vector<SlotRange> layers_;
   std::vector<std::vector<std::uint32_t>> phases_;
   std::uint64_t hashMask_ = 0;
+  std::array<std::int64_t, 3> origin_{};  // the lowest cell coordinates of the last rebuild
+  bool torus_ = false;  // some axis spans 2^21 - 1 cells or more: coordinates wrap
 };
 
 /// Brute-force reference: every pair (i < j) closer than `cutoff`, O(n^2). Tests only.

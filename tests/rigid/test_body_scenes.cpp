@@ -257,9 +257,12 @@ TEST(BodyScenes, AMeshObjectsTransformPlacesItsMeshOnItsParticles) {
 }
 
 // Three boxes stacked on the floor, each shifted by a quarter particle on the one below,
-// stand. Bodies made of particles have bumpy faces: in the first second each box slides
-// into the hollows of the one below (at most half a particle sideways, a seventh of a
-// particle down); after that the stack stays still.
+// stand. Bodies made of particles have bumpy faces: in the first second or two each box
+// slides into the hollows of the one below (at most half a particle sideways, a seventh
+// of a particle down); after that the stack stays still. (How long the top box takes to
+// find its hollow depends on float rounding: 1 s in one particle order, 2 s in another,
+// so stillness is checked from 2 s on: under 1 cm in the next 3 s, in both about 1 mm a
+// second.)
 TEST(BodyScenes, AStackOfThreeBoxesSettlesIntoItsHollowsAndStands) {
   scene::SceneDesc d = floorScene(0.3, 0.6);
   for (int k = 0; k < 3; ++k)
@@ -271,11 +274,10 @@ TEST(BodyScenes, AStackOfThreeBoxesSettlesIntoItsHollowsAndStands) {
   std::vector<Vec3> start, settled;
   for (int k = 0; k < 3; ++k) start.push_back(run.body(k).position);
   for (int f = 0; f < 24; ++f) run.sim->advanceFrame();
-  for (int k = 0; k < 3; ++k) {
-    settled.push_back(run.body(k).position);
-    EXPECT_LT((settled[k] - start[k]).norm(), 0.1 * (k + 1)) << "box " << k;
-  }
-  for (int f = 0; f < 4 * 24; ++f) run.sim->advanceFrame();
+  for (int k = 0; k < 3; ++k) EXPECT_LT((run.body(k).position - start[k]).norm(), 0.1 * (k + 1)) << "box " << k;
+  for (int f = 0; f < 24; ++f) run.sim->advanceFrame();
+  for (int k = 0; k < 3; ++k) settled.push_back(run.body(k).position);
+  for (int f = 0; f < 3 * 24; ++f) run.sim->advanceFrame();
   for (int k = 0; k < 3; ++k) {
     EXPECT_LT((run.body(k).position - settled[k]).norm(), 0.01) << "box " << k << " moved "
                                                                  << (run.body(k).position - settled[k]).transpose();
