@@ -36,29 +36,18 @@ inline void squaredDistances(const Buffers& b, std::uint32_t from, std::uint32_t
 }
 
 // The list entries of buffer entries [from, len) closer than sqrt(cut2) to (xi, yi, zi)
-// go to out, which has room for len - from. Returns how many.
-template <class Out>
+// go to out, which has room for len - from. kExclusive: candidates of owner `own` are
+// dropped too (a rigid body's particles never pair with each other). Returns how many.
+template <bool kExclusive, class Out>
 inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
-                            float zi, float cut2, Out* __restrict out) {
+                            float zi, float cut2, std::uint32_t own, Out* __restrict out) {
   squaredDistances(b, from, len, xi, yi, zi);
   std::uint32_t n = 0;
   for (std::uint32_t k = from; k < len; ++k) {
     out[n] = static_cast<Out>(b.entry[k]);
-    n += b.r2[k] < cut2 ? 1u : 0u;
-  }
-  return n;
-}
-
-// filter() for a particle whose owner's particles never pair with each other (a rigid
-// body): candidates of the same owner are dropped too.
-template <class Out>
-inline std::uint32_t filterOthers(const Buffers& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
-                                  float zi, float cut2, std::uint32_t own, Out* __restrict out) {
-  squaredDistances(b, from, len, xi, yi, zi);
-  std::uint32_t n = 0;
-  for (std::uint32_t k = from; k < len; ++k) {
-    out[n] = static_cast<Out>(b.entry[k]);
-    n += (b.r2[k] < cut2 && b.owner[k] != own) ? 1u : 0u;
+    bool keep = b.r2[k] < cut2;
+    if constexpr (kExclusive) keep = keep && b.owner[k] != own;
+    n += keep ? 1u : 0u;
   }
   return n;
 }
@@ -188,8 +177,8 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
             if (out.size() < listed + len) out.resize(std::max<std::size_t>(2 * out.size(), listed + len));
             const float cut2 = rowCut2_[s.material[i]];
             listed += exclusive && s.owner[i] >= options.exclusiveOwnersFrom
-                          ? filterOthers(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed)
-                          : filter(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, out.data() + listed);
+                          ? filter<true>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed)
+                          : filter<false>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, 0, out.data() + listed);
           }
         }
         out.resize(listed);
