@@ -27,25 +27,47 @@ std::size_t ParticleStore::add(float x, float y, float z, float vxi, float vyi, 
 }
 
 namespace {
-template <class T>
-void gather(std::vector<T>& a, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
-  const std::size_t n = order.size();
-  scratch.resize(n);
-  // In parallel over fixed blocks: each element is written once, whatever the split.
-  using Range = tbb::blocked_range<std::size_t>;
-  tbb::parallel_for(Range(0, n, 16384), [&](const Range& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) scratch[k] = a[order[k]];
+using Range = tbb::blocked_range<std::size_t>;
+constexpr std::size_t kBlock = 16384;
+
+// to[k] = from[order[k]], in parallel over fixed blocks: each element is written once,
+// whatever the split.
+template <class From, class To>
+void gather(const From* __restrict from, std::span<const std::uint32_t> order, To* __restrict to) {
+  tbb::parallel_for(Range(0, order.size(), kBlock), [&](const Range& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) to[k] = static_cast<To>(from[order[k]]);
   });
-  a.swap(scratch);
+}
+
+template <class T>
+void copyBack(std::span<const std::uint32_t> scratch, std::vector<T>& to) {
+  tbb::parallel_for(Range(0, to.size(), kBlock), [&](const Range& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) to[k] = static_cast<T>(scratch[k]);
+  });
 }
 }  // namespace
 
-void ParticleStore::permute(std::span<const std::uint32_t> order) {
-  assert(order.size() == size());
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &fx, &fy, &fz}) gather(*a, order, scratchF_);
-  gather(material, order, scratchS_);
-  gather(owner, order, scratchU_);
-  gather(id, order, scratchU_);
+void ParticleStore::permute(std::span<const std::uint32_t> order, std::span<std::uint32_t> scratch) {
+  const std::size_t n = size();
+  assert(order.size() == n && scratch.size() >= n);
+  // Each float array is gathered into a force array, and the two swap their memory:
+  // the force arrays, whose values are dropped, take turns as scratch.
+  std::vector<float>* const spare[3] = {&fx, &fy, &fz};
+  int next = 0;
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz}) {
+    gather(a->data(), order, spare[next]->data());
+    a->swap(*spare[next]);
+    next = (next + 1) % 3;
+  }
+  tbb::parallel_for(Range(0, n, kBlock), [&](const Range& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) fx[k] = fy[k] = fz[k] = 0.0f;
+  });
+  gather(material.data(), order, scratch.data());
+  copyBack(scratch, material);
+  gather(owner.data(), order, scratch.data());
+  copyBack(scratch, owner);
+  gather(id.data(), order, scratch.data());
+  copyBack(scratch, id);
 }
 
 void ParticleStore::slotsById(std::vector<std::uint32_t>& out) const {

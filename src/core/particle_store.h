@@ -31,18 +31,18 @@ class ParticleStore {
   std::size_t add(float x, float y, float z, float vxi, float vyi, float vzi,
                   std::uint16_t materialIndex, std::uint32_t ownerIndex);
 
-  /// Reorders every array so that new slot k holds old slot order[k]. `order` must be
-  /// a permutation of 0..size()-1. Uses an internal scratch buffer (no allocation once
-  /// warmed up).
-  void permute(std::span<const std::uint32_t> order);
+  /// Reorders the store so that new slot k holds old slot order[k]. `order` must be a
+  /// permutation of 0..size()-1, and `scratch` hold at least size() values.
+  ///
+  /// Forces are not carried: they come back zero. Why: the store is reordered only when
+  /// the neighbour grid is rebuilt, right before the forces are computed again, so the
+  /// three force arrays serve as the scratch of the six other float arrays and the
+  /// store needs no permutation buffer of its own (10 bytes a particle saved). The
+  /// integer arrays go through `scratch` (the grid lends its dead sort keys).
+  void permute(std::span<const std::uint32_t> order, std::span<std::uint32_t> scratch);
 
   /// slotOfId[id] = current slot of that id; filled into `out` (resized to size()).
   void slotsById(std::vector<std::uint32_t>& out) const;
-
- private:
-  std::vector<float> scratchF_;
-  std::vector<std::uint32_t> scratchU_;
-  std::vector<std::uint16_t> scratchS_;
 };
 
 }  // namespace softsub

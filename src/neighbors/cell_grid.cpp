@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "core/work_buffer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -54,10 +58,19 @@ constexpr std::array<std::array<int, 3>, 13> kForward = {{
 }  // namespace
 
 void CellGrid::rebuild(ParticleStore& store, float cellSize) {
-  cellSize_ = cellSize;
+  ownWork_.resize((workBytes(store.size()) + 7) / 8);
+  rebuild(store, cellSize, std::as_writable_bytes(std::span<std::uint64_t>(ownWork_)));
+}
+
+void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte> work) {
   const std::size_t n = store.size();
+  if (work.size() < workBytes(n) || reinterpret_cast<std::uintptr_t>(work.data()) % 8 != 0)
+    throw std::invalid_argument("CellGrid::rebuild: the work memory is too small or not 8-byte aligned");
+  cellSize_ = cellSize;
   const float invH = 1.0f / cellSize;
-  keys_.resize(n);
+  n_ = n;
+  keys_ = reuseStorageAs<std::uint64_t>(work.data(), n);
+  order_ = reuseStorageAs<std::uint32_t>(work.data() + n * 8, n);
   using Range = tbb::blocked_range<std::size_t>;
   // The lowest and highest cell coordinates (exact, so the same for any split; a NaN
   // counts as the lowest possible). Coordinates are counted from the lowest: when every
@@ -115,12 +128,13 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize) {
       },
       [](bool a, bool b) { return a && b; });
   reordered_ = !sorted;
-  if (!sorted) {
-    sortKeys();
-    store.permute(order_);
-  }
+  if (!sorted) sortKeys();
   buildCells();
   if (torus_) buildHash();
+  // The keys are dead now: their memory is the store's scratch for its integer arrays.
+  if (!sorted) store.permute({order_, n}, {reuseStorageAs<std::uint32_t>(work.data(), n), n});
+  keys_ = nullptr;
+  order_ = nullptr;
 }
 
 // The 13 forward cells lie in 5 rows of constant (y, z); since cells are sorted by
@@ -180,33 +194,94 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
   return {ranges_.data(), n};
 }
 
+namespace {
+
+// Orders the pairs (keys[i], order[i]) by key, then by order, in place. With `order`
+// the slots the keys came from, this is the stable sort by key.
+void insertionSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n) {
+  for (std::size_t i = 1; i < n; ++i) {
+    const std::uint64_t k = keys[i];
+    const std::uint32_t o = order[i];
+    std::size_t j = i;
+    for (; j > 0 && (keys[j - 1] > k || (keys[j - 1] == k && order[j - 1] > o)); --j) {
+      keys[j] = keys[j - 1];
+      order[j] = order[j - 1];
+    }
+    keys[j] = k;
+    order[j] = o;
+  }
+}
+
+// The same order by an in-place most-significant-digit radix sort (American flag sort):
+// bytes from `shift` down, skipping those in which no key differs (`varying`); small
+// buckets finish by insertion, and buckets of equal keys by slot. In place, so a
+// rebuild needs no sort buffer (12 bytes a particle, as an LSD radix sort would).
+void radixSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, int shift, std::uint64_t varying) {
+  constexpr std::size_t kSmall = 48;
+  if (n <= kSmall) {
+    insertionSort(keys, order, n);
+    return;
+  }
+  while (shift >= 0 && ((varying >> shift) & 0xFF) == 0) shift -= 8;
+  if (shift < 0) {  // every key equal: by slot only
+    std::sort(order, order + n);
+    return;
+  }
+  std::array<std::size_t, 257> start{};
+  for (std::size_t i = 0; i < n; ++i) ++start[((keys[i] >> shift) & 0xFF) + 1];
+  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  std::array<std::size_t, 256> next;
+  std::copy(start.begin(), start.end() - 1, next.begin());
+  // Each element not in its bucket's range is carried around its cycle of displaced
+  // elements until the one that belongs at the starting position comes back.
+  for (std::size_t b = 0; b < 256; ++b) {
+    while (next[b] < start[b + 1]) {
+      std::uint64_t k = keys[next[b]];
+      std::uint32_t o = order[next[b]];
+      for (std::size_t d = (k >> shift) & 0xFF; d != b; d = (k >> shift) & 0xFF) {
+        const std::size_t to = next[d]++;
+        std::swap(k, keys[to]);
+        std::swap(o, order[to]);
+      }
+      keys[next[b]] = k;
+      order[next[b]] = o;
+      ++next[b];
+    }
+  }
+  for (std::size_t b = 0; b < 256; ++b)
+    if (start[b + 1] - start[b] > 1)
+      radixSort(keys + start[b], order + start[b], start[b + 1] - start[b], shift - 8, varying);
+}
+
+}  // namespace
+
 // Stable sort of the particle slots by key. Nearly sorted input (the usual case from
-// one substep to the next) takes an insertion sort; otherwise an LSD radix sort that
-// skips the bytes all keys share.
+// one substep to the next) takes an insertion sort; otherwise the in-place radix sort.
 void CellGrid::sortKeys() {
-  const std::size_t n = keys_.size();
-  order_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<std::uint32_t>(i);
+  const std::size_t n = n_;
+  std::uint64_t* keys = keys_;
+  std::uint32_t* order = order_;
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
 
   // Insertion sort while the data is nearly sorted; it gives up (the radix sort then
   // finishes from wherever it stopped, still correct) once it has moved more than a few
   // slots per particle, so its worst case stays O(n).
   std::size_t descents = 0;
-  for (std::size_t i = 1; i < n; ++i) descents += keys_[i] < keys_[i - 1];
+  for (std::size_t i = 1; i < n; ++i) descents += keys[i] < keys[i - 1];
   if (descents * 32 < n) {
     std::size_t budget = 8 * n;
     bool done = true;
     for (std::size_t i = 1; i < n && done; ++i) {
-      const std::uint64_t k = keys_[i];
-      const std::uint32_t o = order_[i];
+      const std::uint64_t k = keys[i];
+      const std::uint32_t o = order[i];
       std::size_t j = i;
-      while (j > 0 && keys_[j - 1] > k) {
-        keys_[j] = keys_[j - 1];
-        order_[j] = order_[j - 1];
+      while (j > 0 && keys[j - 1] > k) {
+        keys[j] = keys[j - 1];
+        order[j] = order[j - 1];
         --j;
       }
-      keys_[j] = k;
-      order_[j] = o;
+      keys[j] = k;
+      order[j] = o;
       const std::size_t moved = i - j;
       if (moved > budget) done = false;
       else budget -= moved;
@@ -214,30 +289,16 @@ void CellGrid::sortKeys() {
     if (done) return;
   }
 
-  keysTmp_.resize(n);
-  orderTmp_.resize(n);
   std::uint64_t allOr = 0, allAnd = ~std::uint64_t{0};
-  for (std::uint64_t k : keys_) { allOr |= k; allAnd &= k; }
-  const std::uint64_t varying = allOr ^ allAnd;
-  std::array<std::uint32_t, 256> count{};
-  for (int shift = 0; shift < 64; shift += 8) {
-    if (((varying >> shift) & 0xFF) == 0) continue;
-    count.fill(0);
-    for (std::uint64_t k : keys_) ++count[(k >> shift) & 0xFF];
-    std::uint32_t sum = 0;
-    for (auto& c : count) { const std::uint32_t t = c; c = sum; sum += t; }
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t dst = count[(keys_[i] >> shift) & 0xFF]++;
-      keysTmp_[dst] = keys_[i];
-      orderTmp_[dst] = order_[i];
-    }
-    keys_.swap(keysTmp_);
-    order_.swap(orderTmp_);
+  for (std::size_t i = 0; i < n; ++i) {
+    allOr |= keys[i];
+    allAnd &= keys[i];
   }
+  radixSort(keys, order, n, 56, allOr ^ allAnd);
 }
 
 void CellGrid::buildCells() {
-  const std::size_t n = keys_.size();
+  const std::size_t n = n_;
   cellStart_.clear();
   cellKey_.clear();
   layers_.clear();
@@ -291,8 +352,7 @@ std::int64_t CellGrid::findCell(std::uint64_t key) const {
 }
 
 std::size_t CellGrid::memoryBytes() const {
-  return keys_.capacity() * 8 + keysTmp_.capacity() * 8 + order_.capacity() * 4 +
-         orderTmp_.capacity() * 4 + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
+  return ownWork_.capacity() * 8 + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
          hashKeys_.capacity() * 8 + hashCells_.capacity() * 4;
 }
 

@@ -2,6 +2,7 @@
 /// The neighbour grid: particles sorted by cell, neighbour cells found by walking the
 /// sorted cell keys. Memory is O(particles) whatever the spatial extent.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -33,8 +34,16 @@ struct SlotRange {
 class CellGrid {
  public:
   /// Sorts `store` by cell of size `cellSize` (> 0) and rebuilds the cell lists.
-  /// Permutes the store only when the order changed. No allocation once warmed up.
+  /// Permutes the store only when the order changed, and then its forces come back zero
+  /// (ParticleStore::permute). Works in a buffer of its own (no allocation once warmed
+  /// up).
   void rebuild(ParticleStore& store, float cellSize);
+  /// The same, working in `work` (at least workBytes(store.size()) bytes, 8-byte
+  /// aligned; std::invalid_argument otherwise), whose contents it overwrites: the solver
+  /// lends the memory of its list reference positions, dead during a rebuild.
+  void rebuild(ParticleStore& store, float cellSize, std::span<std::byte> work);
+  /// Bytes of work a rebuild of n particles needs: a sort key and a slot each.
+  [[nodiscard]] static constexpr std::size_t workBytes(std::size_t n) { return n * 12; }
 
   /// Number of occupied cells.
   [[nodiscard]] std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
@@ -110,8 +119,12 @@ class CellGrid {
 
   float cellSize_ = 0;
   bool reordered_ = false;
-  std::vector<std::uint64_t> keys_, keysTmp_;
-  std::vector<std::uint32_t> order_, orderTmp_;
+  // During a rebuild: each slot's key and, once sorted, the slot it came from; both live
+  // in the work memory (ownWork_ or the caller's), dead once the store is reordered.
+  std::uint64_t* keys_ = nullptr;
+  std::uint32_t* order_ = nullptr;
+  std::size_t n_ = 0;
+  std::vector<std::uint64_t> ownWork_;
   std::vector<std::uint32_t> cellStart_;   // cellCount()+1 slot offsets
   std::vector<std::uint64_t> cellKey_;     // key of each cell
   std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two

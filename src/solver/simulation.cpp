@@ -126,18 +126,14 @@ bool Simulation::listIsStale() const {
 void Simulation::computeForces() {
   ParticleStore& s = state_.particles;
   if (listIsStale()) {
-    // Only here is the store re-sorted: the list holds slots.
-    grid_.rebuild(s, cellSize_ + skin_);
+    // Only here is the store re-sorted: the list holds slots. The grid works in the
+    // reference positions' memory (they are rewritten below).
+    listValid_ = false;
+    reserveListWork();
+    grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
     list_.build(grid_, model_.table, s, skin_, listOptions_);
     if (!model_.bodies.empty()) listRigidPairs();
-    refX_.resize(s.size());
-    refY_.resize(s.size());
-    refZ_.resize(s.size());
-    forEachSlot(s.size(), [&](std::size_t i) {
-      refX_[i] = s.px[i];
-      refY_[i] = s.py[i];
-      refZ_[i] = s.pz[i];
-    });
+    holdReference(s.px, s.py, s.pz);
     listValid_ = true;
     ++listBuilds_;
   }
@@ -341,7 +337,26 @@ double Simulation::travelPerSubstep() const {
 
 Simulation::ListReference Simulation::listReference() const {
   if (!listValid_) return {};
-  return {refX_, refY_, refZ_};
+  const std::size_t n = state_.particles.size();
+  return {{refX_, n}, {refY_, n}, {refZ_, n}};
+}
+
+void Simulation::reserveListWork() {
+  const std::size_t n = state_.particles.size();
+  listWork_.reserve(std::max(neighbors::CellGrid::workBytes(n), 3 * n * sizeof(float)));
+}
+
+void Simulation::holdReference(std::span<const float> x, std::span<const float> y, std::span<const float> z) {
+  const std::size_t n = x.size();
+  float* ref = reuseStorageAs<float>(listWork_.bytes().data(), 3 * n);
+  refX_ = ref;
+  refY_ = ref + n;
+  refZ_ = ref + 2 * n;
+  forEachSlot(n, [&](std::size_t i) {
+    refX_[i] = x[i];
+    refY_[i] = y[i];
+    refZ_[i] = z[i];
+  });
 }
 
 void Simulation::restore(State state, std::vector<float> refX, std::vector<float> refY, std::vector<float> refZ) {
@@ -393,7 +408,8 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
   s.px.swap(refX);
   s.py.swap(refY);
   s.pz.swap(refZ);
-  grid_.rebuild(s, cellSize_ + skin_);
+  reserveListWork();
+  grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
   if (grid_.reordered()) {
     // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
     giveBack();
@@ -412,9 +428,7 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
   s.px.swap(refX);
   s.py.swap(refY);
   s.pz.swap(refZ);
-  refX_ = std::move(refX);
-  refY_ = std::move(refY);
-  refZ_ = std::move(refZ);
+  holdReference(refX, refY, refZ);
   listValid_ = true;
 }
 
@@ -542,9 +556,7 @@ std::size_t Simulation::memoryBytes() const {
   std::size_t b = 0;
   for (auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) b += a->capacity() * 4;
   b += s.material.capacity() * 2 + s.owner.capacity() * 4 + s.id.capacity() * 4;
-  // The store's permute scratch is one array of each type.
-  b += s.size() * (4 + 4 + 2);
-  b += list_.memoryBytes() + (refX_.capacity() + refY_.capacity() + refZ_.capacity()) * 4;
+  b += list_.memoryBytes() + listWork_.size();
   b += rigidPairs_.capacity() * sizeof(rigid::SlotPair) + rigid_.bodySlots().size() * 4;
   b += model_.bodies.particleCount() * 12;  // body-space offsets
   return b + grid_.memoryBytes() + slotOfId_.capacity() * 4;

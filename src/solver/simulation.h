@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/snapshot.h"
+#include "core/work_buffer.h"
 #include "fluid/pair_forces.h"
 #include "neighbors/cell_grid.h"
 #include "rigid/solver.h"
@@ -108,6 +109,10 @@ class Simulation {
     bool finite = true;
   };
   [[nodiscard]] Extremes scanParticles(bool withForces) const;
+  // listWork_ large enough for a grid rebuild and for the reference positions.
+  void reserveListWork();
+  // Copies the reference positions into listWork_.
+  void holdReference(std::span<const float> x, std::span<const float> y, std::span<const float> z);
 
   const Model& model_;
   State state_;
@@ -121,7 +126,12 @@ class Simulation {
   float skin_ = 0;      // pair-list margin beyond the cutoff
   bool listValid_ = false;
   std::int64_t listBuilds_ = 0;
-  std::vector<float> refX_, refY_, refZ_;  // positions when the list was built
+  // Positions when the list was built (valid with listValid_), in listWork_, which the
+  // grid uses as its work memory during a rebuild (core/work_buffer.h).
+  WorkBuffer listWork_;
+  float* refX_ = nullptr;
+  float* refY_ = nullptr;
+  float* refZ_ = nullptr;
   mutable std::vector<std::uint32_t> slotOfId_;
   // Rigid bodies.
   rigid::RigidSolver rigid_;

@@ -29,34 +29,42 @@ TEST(ParticleStore, AddAssignsIdsInOrder) {
   EXPECT_EQ(s.owner[4], 1u);
 }
 
-TEST(ParticleStore, PermuteMovesEveryArrayTogether) {
+TEST(ParticleStore, PermuteMovesEveryArrayTogetherAndZeroesForces) {
   ParticleStore s = numbered(1000);
-  std::vector<std::uint32_t> order(s.size());
+  std::vector<std::uint32_t> order(s.size()), scratch(s.size());
   std::iota(order.begin(), order.end(), 0u);
   std::shuffle(order.begin(), order.end(), std::mt19937(5));
-  s.permute(order);
+  s.permute(order, scratch);
   for (std::size_t k = 0; k < s.size(); ++k) {
     const std::uint32_t was = order[k];
     const float f = static_cast<float>(was);
     ASSERT_EQ(s.id[k], was);
     ASSERT_EQ(s.px[k], f); ASSERT_EQ(s.py[k], 10 + f); ASSERT_EQ(s.pz[k], 20 + f);
     ASSERT_EQ(s.vx[k], 30 + f); ASSERT_EQ(s.vy[k], 40 + f); ASSERT_EQ(s.vz[k], 50 + f);
-    ASSERT_EQ(s.fx[k], 60 + f); ASSERT_EQ(s.fy[k], 70 + f); ASSERT_EQ(s.fz[k], 80 + f);
+    // The force arrays were the scratch: not carried, zero.
+    ASSERT_EQ(s.fx[k], 0.0f); ASSERT_EQ(s.fy[k], 0.0f); ASSERT_EQ(s.fz[k], 0.0f);
     ASSERT_EQ(s.material[k], was % 7);
     ASSERT_EQ(s.owner[k], was % 3);
   }
-  // A second permutation composes with the first.
-  std::vector<std::uint32_t> back(s.size());
+  // Every array keeps its size.
+  for (const auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) EXPECT_EQ(a->size(), s.size());
+  // A second permutation composes with the first, and a longer scratch is fine.
+  std::vector<std::uint32_t> back(s.size()), longer(s.size() + 7);
   for (std::size_t k = 0; k < s.size(); ++k) back[order[k]] = static_cast<std::uint32_t>(k);
-  s.permute(back);
-  for (std::uint32_t k = 0; k < s.size(); ++k) ASSERT_EQ(s.id[k], k);
+  s.permute(back, longer);
+  for (std::uint32_t k = 0; k < s.size(); ++k) {
+    ASSERT_EQ(s.id[k], k);
+    ASSERT_EQ(s.vz[k], 50 + static_cast<float>(k));
+    ASSERT_EQ(s.material[k], k % 7);
+  }
 }
 
 TEST(ParticleStore, SlotsByIdInvertsThePermutation) {
   ParticleStore s = numbered(300);
   std::vector<std::uint32_t> order(s.size());
   std::iota(order.rbegin(), order.rend(), 0u);  // reversed
-  s.permute(order);
+  std::vector<std::uint32_t> scratch(s.size());
+  s.permute(order, scratch);
   std::vector<std::uint32_t> slot;
   s.slotsById(slot);
   ASSERT_EQ(slot.size(), s.size());

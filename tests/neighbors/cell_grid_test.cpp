@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <span>
+#include <stdexcept>
 
 #include "neighbors/cell_grid.h"
 
@@ -225,6 +227,74 @@ TEST(CellGrid, ReSortIsStableByCellWhateverHowManyParticlesMoved) {
     }
     EXPECT_EQ(covered, s.size());
   }
+}
+
+// Slots of each cell in the order they had before the rebuild (ids set to the old slot).
+void expectStableByCell(const CellGrid& g, const ParticleStore& s) {
+  std::size_t covered = 0;
+  for (std::size_t c = 0; c < g.cellCount(); ++c) {
+    const SlotRange r = g.cell(c);
+    ASSERT_EQ(r.begin, covered);
+    covered = r.end;
+    for (std::uint32_t i = r.begin + 1; i < r.end; ++i) ASSERT_LT(s.id[i - 1], s.id[i]) << "cell " << c;
+  }
+  EXPECT_EQ(covered, s.size());
+}
+
+// The in-place radix sort from a shuffled store: cells crowded far beyond its insertion
+// threshold (ties broken by slot), and a cloud whose x coordinates span two key bytes.
+TEST(CellGrid, ShuffledInputSortsStablyInCrowdedCellsAndWideClouds) {
+  struct Case {
+    float lo, hi, h;
+    std::size_t n;
+  };
+  for (const Case& c : {Case{0, 2, 1, 6000}, Case{0, 3000, 1, 20000}, Case{-7, 7, 0.5f, 30000}}) {
+    ParticleStore s = cloud(c.n, c.lo, c.hi, 11);
+    if (c.hi > 1000)  // wide in x only: thousands of cells, up to 12 bits of x
+      for (std::size_t i = 0; i < s.size(); ++i) s.py[i] = s.pz[i] = 0.5f;
+    for (std::size_t i = 0; i < s.size(); ++i) s.id[i] = static_cast<std::uint32_t>(i);
+    CellGrid g;
+    g.rebuild(s, c.h);
+    ASSERT_TRUE(g.reordered());
+    expectStableByCell(g, s);
+    for (std::size_t k = 1; k < g.cellCount(); ++k) {
+      const std::uint32_t a = g.cell(k - 1).begin, b = g.cell(k).begin;
+      const auto key = [&](std::uint32_t i) {
+        return std::array<float, 3>{std::floor(s.pz[i] / c.h), std::floor(s.py[i] / c.h), std::floor(s.px[i] / c.h)};
+      };
+      ASSERT_LT(key(a), key(b)) << "cells ascending by (z, y, x)";
+    }
+    EXPECT_EQ(gridPairs(g, s, c.h, nullptr), brutePairs(s, c.h));
+  }
+}
+
+// A caller's work memory gives the same grid and the same store as the grid's own, and
+// the grid then keeps no per-particle memory; reordered forces come back zero.
+TEST(CellGrid, WorkMemoryFromTheCallerGivesTheSameResult) {
+  ParticleStore a = cloud(5000, -4, 4, 21);
+  for (std::size_t i = 0; i < a.size(); ++i) a.fx[i] = a.fy[i] = a.fz[i] = 1.0f;
+  ParticleStore b = a;
+  CellGrid own, lent;
+  own.rebuild(a, 0.8f);
+  std::vector<std::uint64_t> work(CellGrid::workBytes(b.size()) / 8 + 1);
+  lent.rebuild(b, 0.8f, std::as_writable_bytes(std::span<std::uint64_t>(work)));
+  ASSERT_TRUE(lent.reordered());
+  EXPECT_EQ(a.px, b.px);
+  EXPECT_EQ(a.vz, b.vz);
+  EXPECT_EQ(a.id, b.id);
+  ASSERT_EQ(own.cellCount(), lent.cellCount());
+  for (std::size_t c = 0; c < own.cellCount(); ++c) ASSERT_EQ(own.cell(c).end, lent.cell(c).end);
+  for (std::size_t i = 0; i < b.size(); ++i) ASSERT_EQ(b.fx[i] + b.fy[i] + b.fz[i], 0.0f);
+  EXPECT_GE(own.memoryBytes(), lent.memoryBytes() + CellGrid::workBytes(a.size()));
+  // Sorted input is left alone, forces included.
+  b.fx[3] = 2.0f;
+  lent.rebuild(b, 0.8f, std::as_writable_bytes(std::span<std::uint64_t>(work)));
+  EXPECT_FALSE(lent.reordered());
+  EXPECT_EQ(b.fx[3], 2.0f);
+  // Too small, or misaligned: refused before anything changes.
+  const auto bytes = std::as_writable_bytes(std::span<std::uint64_t>(work));
+  EXPECT_THROW(lent.rebuild(b, 0.8f, bytes.first(CellGrid::workBytes(b.size()) - 1)), std::invalid_argument);
+  EXPECT_THROW(lent.rebuild(b, 0.8f, bytes.subspan(4)), std::invalid_argument);
 }
 
 }  // namespace
