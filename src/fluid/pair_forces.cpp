@@ -52,6 +52,17 @@ inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t 
   return n;
 }
 
+// Makes room for `needed` entries in a layer's list. It grows by an eighth, not by
+// doubling: a list keeps its capacity from one build to the next (no allocation once
+// warmed up), so what matters is how far the capacity overshoots the list for good
+// (doubling left 8-10 bytes a particle unused), not the few copies of the first build.
+template <class V>
+void grow(V& list, std::size_t needed) {
+  const std::size_t target = std::max<std::size_t>({needed, list.size() + list.size() / 8, 256});
+  list.reserve(target);  // exactly: resize alone would double the capacity
+  list.resize(target);
+}
+
 }  // namespace
 
 // Per-thread build buffers: one cell's candidates (positions, slots, squared distances,
@@ -125,7 +136,9 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
     for (std::size_t l = range.begin(); l != range.end(); ++l) {
       Layer& layer = layers_[l];
       layer.slots = gridLayers[l];
-      layer.start.resize(layer.slots.end - layer.slots.begin + 1);
+      const std::size_t rows = layer.slots.end - layer.slots.begin;
+      if (layer.start.capacity() < rows + 1) layer.start.reserve(rows + 1 + rows / 8);  // see grow()
+      layer.start.resize(rows + 1);
       // Narrow (16-bit offsets) when every candidate lies within 65,536 slots from the
       // layer's first one.
       // The layer's cells' forward ranges are found once (the walker) and kept for the
@@ -174,7 +187,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
           for (std::uint32_t i = own.begin; i < own.end; ++i) {
             layer.start[i - layer.slots.begin] = listed;
             const std::uint32_t from = i - own.begin + 1;
-            if (out.size() < listed + len) out.resize(std::max<std::size_t>(2 * out.size(), listed + len));
+            if (out.size() < listed + len) grow(out, listed + len);
             const float cut2 = rowCut2_[s.material[i]];
             listed += exclusive && s.owner[i] >= options.exclusiveOwnersFrom
                           ? filter<true>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed)
