@@ -56,9 +56,11 @@ inline std::uint32_t filter(const Buffers& b, std::uint32_t from, std::uint32_t 
 // doubling: a list keeps its capacity from one build to the next (no allocation once
 // warmed up), so what matters is how far the capacity overshoots the list for good
 // (doubling left 8-10 bytes a particle unused), not the few copies of the first build.
+// No fixed minimum: a scene of sparse layers (spray, a thin column) would pay it per
+// layer.
 template <class V>
 void grow(V& list, std::size_t needed) {
-  const std::size_t target = std::max<std::size_t>({needed, list.size() + list.size() / 8, 256});
+  const std::size_t target = std::max<std::size_t>(needed, list.size() + list.size() / 8);
   list.reserve(target);  // exactly: resize alone would double the capacity
   list.resize(target);
 }

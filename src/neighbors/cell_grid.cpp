@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "core/work_buffer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -58,8 +57,8 @@ constexpr std::array<std::array<int, 3>, 13> kForward = {{
 }  // namespace
 
 void CellGrid::rebuild(ParticleStore& store, float cellSize) {
-  ownWork_.resize((workBytes(store.size()) + 7) / 8);
-  rebuild(store, cellSize, std::as_writable_bytes(std::span<std::uint64_t>(ownWork_)));
+  ownWork_.reserve(workBytes(store.size()));
+  rebuild(store, cellSize, ownWork_.bytes());
 }
 
 void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte> work) {
@@ -352,7 +351,10 @@ std::int64_t CellGrid::findCell(std::uint64_t key) const {
 }
 
 std::size_t CellGrid::memoryBytes() const {
-  return ownWork_.capacity() * 8 + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
+  std::size_t phases = 0;
+  for (const auto& p : phases_) phases += p.capacity() * 4;
+  return ownWork_.size() + cellStart_.capacity() * 4 + cellKey_.capacity() * 8 +
+         layers_.capacity() * sizeof(SlotRange) + phases_.capacity() * sizeof(phases_[0]) + phases +
          hashKeys_.capacity() * 8 + hashCells_.capacity() * 4;
 }
 

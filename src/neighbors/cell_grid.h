@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/particle_store.h"
+#include "core/work_buffer.h"
 
 namespace softsub::neighbors {
 
@@ -124,7 +125,7 @@ class CellGrid {
   std::uint64_t* keys_ = nullptr;
   std::uint32_t* order_ = nullptr;
   std::size_t n_ = 0;
-  std::vector<std::uint64_t> ownWork_;
+  WorkBuffer ownWork_;  // the work memory when the caller lends none
   std::vector<std::uint32_t> cellStart_;   // cellCount()+1 slot offsets
   std::vector<std::uint64_t> cellKey_;     // key of each cell
   std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two

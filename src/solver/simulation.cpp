@@ -408,14 +408,12 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
   s.px.swap(refX);
   s.py.swap(refY);
   s.pz.swap(refZ);
-  reserveListWork();
-  grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
-  if (grid_.reordered()) {
-    // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
-    giveBack();
-    throw std::invalid_argument("the checkpoint's particle order does not match its list reference");
-  }
   try {
+    reserveListWork();
+    grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
+    // Cannot happen for a checkpoint this build wrote; refuse rather than diverge.
+    if (grid_.reordered())
+      throw std::invalid_argument("the checkpoint's particle order does not match its list reference");
     list_.build(grid_, model_.table, s, skin_, listOptions_);
     if (!model_.bodies.empty()) listRigidPairs();
   } catch (...) {

@@ -340,5 +340,36 @@ TEST(PairList, SixteenBitFormHoldsUpToItsLastOffset) {
   }
 }
 
+// A list holds little more than what it lists: for a dense cloud, its entries and row
+// starts plus an eighth; for a scene of sparse layers (one particle each, as a spray or
+// a tall thin column gives), no fixed minimum per layer.
+TEST(PairList, MemoryStaysCloseToWhatIsListed) {
+  forces::InteractionTable table(1);
+  table.set(0, 0, {forces::Linear{5, 1.0, 0, 5}, 0, 0});
+  constexpr std::size_t kThreadScratch = 256 * 1024;  // per-thread candidate buffers, generous
+  {
+    ParticleStore s = scenarios::randomCloud(30000, -10, 10, 0, 1, 4);
+    neighbors::CellGrid grid;
+    grid.rebuild(s, 1.1f);
+    PairList list;
+    list.build(grid, table, s, 0.1f);
+    ASSERT_GT(list.pairCount(), s.size());
+    const double listed = 2.0 * static_cast<double>(list.pairCount()) + 4.0 * static_cast<double>(s.size());
+    EXPECT_LT(static_cast<double>(list.memoryBytes()),
+              1.2 * listed + static_cast<double>(list.layers().size() * sizeof(PairList::Layer) + kThreadScratch));
+  }
+  {
+    ParticleStore s;
+    for (int k = 0; k < 20000; ++k) s.add(0.3f * static_cast<float>(k % 7), 0.5f, 3.0f * static_cast<float>(k), 0, 0, 0, 0, 0);
+    neighbors::CellGrid grid;
+    grid.rebuild(s, 1.0f);
+    ASSERT_EQ(grid.layers().size(), s.size());
+    PairList list;
+    list.build(grid, table, s, 0.1f);
+    EXPECT_EQ(list.pairCount(), 0u);
+    EXPECT_LT(list.memoryBytes(), s.size() * (sizeof(PairList::Layer) + 16) + kThreadScratch);
+  }
+}
+
 }  // namespace
 }  // namespace softsub::fluid

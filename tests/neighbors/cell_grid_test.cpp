@@ -242,29 +242,36 @@ void expectStableByCell(const CellGrid& g, const ParticleStore& s) {
 }
 
 // The in-place radix sort from a shuffled store: cells crowded far beyond its insertion
-// threshold (ties broken by slot), and a cloud whose x coordinates span two key bytes.
-TEST(CellGrid, ShuffledInputSortsStablyInCrowdedCellsAndWideClouds) {
+// threshold (ties broken by slot), just above that threshold, a cloud whose x
+// coordinates span two key bytes, and keys that wrap (a torus: outliers 1e9 away).
+TEST(CellGrid, ShuffledInputSortsStablyInCrowdedCellsWideCloudsAndTori) {
   struct Case {
     float lo, hi, h;
     std::size_t n;
+    bool wide, torus;
   };
-  for (const Case& c : {Case{0, 2, 1, 6000}, Case{0, 3000, 1, 20000}, Case{-7, 7, 0.5f, 30000}}) {
+  for (const Case& c : {Case{0, 2, 1, 6000, false, false}, Case{0, 1.9f, 1, 49, false, false},
+                        Case{0, 1.9f, 1, 50, false, false}, Case{0, 3000, 1, 20000, true, false},
+                        Case{-7, 7, 0.5f, 30000, false, false}, Case{-3, 3, 0.5f, 5000, false, true}}) {
     ParticleStore s = cloud(c.n, c.lo, c.hi, 11);
-    if (c.hi > 1000)  // wide in x only: thousands of cells, up to 12 bits of x
+    if (c.wide)  // wide in x only: thousands of cells, up to 12 bits of x
       for (std::size_t i = 0; i < s.size(); ++i) s.py[i] = s.pz[i] = 0.5f;
+    if (c.torus)
+      for (std::size_t i = 0; i < s.size(); i += 97) s.px[i] += (i % 2 ? 1e9f : -1e9f);
     for (std::size_t i = 0; i < s.size(); ++i) s.id[i] = static_cast<std::uint32_t>(i);
     CellGrid g;
     g.rebuild(s, c.h);
     ASSERT_TRUE(g.reordered());
     expectStableByCell(g, s);
-    for (std::size_t k = 1; k < g.cellCount(); ++k) {
-      const std::uint32_t a = g.cell(k - 1).begin, b = g.cell(k).begin;
-      const auto key = [&](std::uint32_t i) {
-        return std::array<float, 3>{std::floor(s.pz[i] / c.h), std::floor(s.py[i] / c.h), std::floor(s.px[i] / c.h)};
-      };
-      ASSERT_LT(key(a), key(b)) << "cells ascending by (z, y, x)";
-    }
-    EXPECT_EQ(gridPairs(g, s, c.h, nullptr), brutePairs(s, c.h));
+    if (!c.torus)  // (wrapped keys are ordered by wrapped coordinates)
+      for (std::size_t k = 1; k < g.cellCount(); ++k) {
+        const std::uint32_t a = g.cell(k - 1).begin, b = g.cell(k).begin;
+        const auto key = [&](std::uint32_t i) {
+          return std::array<float, 3>{std::floor(s.pz[i] / c.h), std::floor(s.py[i] / c.h), std::floor(s.px[i] / c.h)};
+        };
+        ASSERT_LT(key(a), key(b)) << "cells ascending by (z, y, x)";
+      }
+    EXPECT_EQ(gridPairs(g, s, c.h, nullptr), brutePairs(s, c.h)) << c.n << " particles";
   }
 }
 
