@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "solver/simulation.h"
 #include "support/scenarios.h"
@@ -49,6 +50,29 @@ void BM_SlumpingCube(benchmark::State& st) {
   run(st, model, state, n, 4);  // measured while it slumps
 }
 BENCHMARK(BM_SlumpingCube)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+// A dam of goo flat in z (two lattice layers deep, twice as long in x as high in y)
+// collapsing in a container just as deep: the grid must cut it into layers along x, or
+// both cores share one or two layers (thread scaling, docs/benchmarks.md).
+void BM_FlatDam(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  solver::Model model = scenarios::oneFluidModel(n);
+  const auto high = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n) / 4.0)));
+  const std::size_t wide = 2 * high;
+  solver::Container c;
+  c.lo = {-1.0, 0, -1.2};
+  c.hi = {4.0 * static_cast<double>(wide), 2.0 * static_cast<double>(high), 1.2};
+  model.container = c;
+  solver::State state;
+  state.particles.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = k % wide, j = (k / wide) % high, l = k / (wide * high);
+    state.particles.add(static_cast<float>(i), static_cast<float>(0.5 + static_cast<double>(j)),
+                        static_cast<float>(l % 2) - 0.5f, 0, 0, 0, 0, 0);
+  }
+  run(st, model, state, n, 4);  // measured while it collapses
+}
+BENCHMARK(BM_FlatDam)->Arg(20000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 }  // namespace
 

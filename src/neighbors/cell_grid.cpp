@@ -108,16 +108,31 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte
         return a;
       });
   torus_ = false;
+  std::array<std::int64_t, 3> extent{};
   for (int a = 0; a < 3; ++a) {
     origin_[a] = n > 0 ? span.lo[a] : 0;
-    if (n > 0 && span.hi[a] - span.lo[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
+    extent[a] = n > 0 ? span.hi[a] - span.lo[a] : 0;
+    if (extent[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
   }
+  // The layers' axis (the key's major field): z, unless y spans half as many cells
+  // again (plus one), and then x likewise against the one chosen. Layers are the unit of
+  // parallel work, so a scene flat in z (a dam in the x-y plane) must not get one or two
+  // layers; the margin keeps a scene about as wide as deep from switching axis (each
+  // switch re-sorts every particle). A function of the positions alone, so a checkpoint
+  // restore rebuilds the same order.
+  int major = 2;
+  for (const int a : {1, 0})
+    if (extent[a] >= extent[major] + extent[major] / 2 + 1) major = a;
+  axes_ = major == 2 ? std::array<int, 3>{0, 1, 2} : major == 1 ? std::array<int, 3>{0, 2, 1} : std::array<int, 3>{1, 2, 0};
   // Keys in parallel over fixed blocks (each key is written once), then whether they are
   // already in order: a logical "and", the same for any split.
   tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      keys_[i] = pack(wrappedCoord(store.px[i], invH, origin_[0]), wrappedCoord(store.py[i], invH, origin_[1]),
-                      wrappedCoord(store.pz[i], invH, origin_[2]));
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint64_t c[3] = {wrappedCoord(store.px[i], invH, origin_[0]),
+                                  wrappedCoord(store.py[i], invH, origin_[1]),
+                                  wrappedCoord(store.pz[i], invH, origin_[2])};
+      keys_[i] = pack(c[axes_[0]], c[axes_[1]], c[axes_[2]]);
+    }
   });
   const bool sorted = tbb::parallel_reduce(
       Range(1, std::max<std::size_t>(n, 1), 8192), true,

@@ -21,11 +21,13 @@ struct SlotRange {
 /// Uniform cell list; the caller picks the cell size (the solver: longest cutoff + skin).
 ///
 /// Why this layout: cell coordinates, counted from the lowest occupied cell of each axis,
-/// are wrapped to 21 bits per axis and packed into one 64-bit key (z, y, x); they wrap
-/// only when an axis spans 2^21 - 1 cells or more (a particle flung far away), and only
-/// then is a hash of the occupied cells built for the offsets that wrap. Sorting particles by key puts each cell's particles next
-/// to each other and keeps rows of cells contiguous, so the three cells (x-1..x+1) of a
-/// neighbouring row usually form a single slot range. Wrapping can only make far-apart
+/// are wrapped to 21 bits per axis and packed into one 64-bit key (major, middle, minor
+/// axis: (z, y, x) unless the scene is clearly longer along y or x, see keyAxes()); they
+/// wrap only when an axis spans 2^21 - 1 cells or more (a particle flung far away), and
+/// only then is a hash of the occupied cells built for the offsets that wrap. Sorting
+/// particles by key puts each cell's particles next to each other and keeps rows of cells
+/// contiguous, so the three cells (minor - 1 .. minor + 1) of a neighbouring row usually
+/// form a single slot range. Wrapping can only make far-apart
 /// cells share a key (then the distance test rejects their pairs); it never separates
 /// true neighbours, and no array is ever sized by the spatial extent.
 ///
@@ -78,17 +80,21 @@ class CellGrid {
     std::array<std::size_t, 13> cursor_{};
     std::array<SlotRange, 13> ranges_{};
   };
-  /// Slot ranges of the layers: the cells of one z coordinate (the sort key's major
-  /// axis) are contiguous slots. A cell's forward neighbours lie in its own layer or the
+  /// Slot ranges of the layers: the cells of one coordinate on the sort key's major axis
+  /// (keyAxes()[2]) are contiguous slots. A cell's forward neighbours lie in its own layer or the
   /// next one, so the pairs of layers k and k + 2 never share a particle: the basis for
   /// deterministic parallel work (layersByPhase).
   [[nodiscard]] std::span<const SlotRange> layers() const { return layers_; }
   /// The layers' indices grouped into phases: within a phase no two layers are
   /// neighbours, so tasks of one phase that write to their own layer and the next one
   /// never write to the same slot. Phases: even layers, odd layers, and, when the last
-  /// layer wraps around to the first (an odd count of z coordinates that meet across
-  /// the 21-bit wrap), that last layer alone.
+  /// layer wraps around to the first (an odd count of major-axis coordinates that meet
+  /// across the 21-bit wrap), that last layer alone.
   [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& layersByPhase() const { return phases_; }
+  /// The physical axes (0 x, 1 y, 2 z) of the sort key's minor, middle and major field,
+  /// as the last rebuild chose them: the major one is the layers' axis, z unless the
+  /// scene is clearly longer along y or x (see rebuild in cell_grid.cpp).
+  [[nodiscard]] std::array<int, 3> keyAxes() const { return axes_; }
   /// The cell size used by the last rebuild.
   [[nodiscard]] float cellSize() const { return cellSize_; }
   /// Whether the last rebuild had to reorder the store.
@@ -135,6 +141,7 @@ class CellGrid {
   std::uint64_t hashMask_ = 0;
   std::array<std::int64_t, 3> origin_{};  // the lowest cell coordinates of the last rebuild
   bool torus_ = false;  // some axis spans 2^21 - 1 cells or more: coordinates wrap
+  std::array<int, 3> axes_{0, 1, 2};  // physical axis of each key field (minor, middle, major)
 };
 
 /// Brute-force reference: every pair (i < j) closer than `cutoff`, O(n^2). Tests only.

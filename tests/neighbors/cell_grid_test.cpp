@@ -304,5 +304,42 @@ TEST(CellGrid, WorkMemoryFromTheCallerGivesTheSameResult) {
   EXPECT_THROW(lent.rebuild(b, 0.8f, bytes.subspan(4)), std::invalid_argument);
 }
 
+// The layers (the unit of parallel work) run along z unless the scene is clearly longer
+// along y or x: a dam flat in z gets one layer per x cell, not one or two.
+TEST(CellGrid, LayersRunAlongTheLongestAxisWithAMarginForZ) {
+  struct Case {
+    float x, y, z;  // the box's side on each axis (from 0)
+    int major;      // expected layers' axis
+  };
+  for (const Case& c : {Case{110, 55, 2, 0}, Case{6, 40, 6, 1}, Case{14, 10, 10, 2}, Case{20, 30, 10, 1},
+                        Case{12, 12, 12, 2}}) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    ParticleStore s;
+    const std::size_t n = 6000;
+    for (std::size_t i = 0; i < n; ++i) s.add(c.x * u(rng), c.y * u(rng), c.z * u(rng), 0, 0, 0, 0, 0);
+    CellGrid g;
+    const float h = 1.0f;
+    g.rebuild(s, h);
+    const std::array<int, 3> axes = g.keyAxes();
+    EXPECT_EQ(axes[2], c.major) << c.x << " x " << c.y << " x " << c.z;
+    std::array<int, 3> sorted = axes;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, (std::array<int, 3>{0, 1, 2}));
+    const float side[3] = {c.x, c.y, c.z};
+    EXPECT_EQ(g.layers().size(), static_cast<std::size_t>(std::ceil(side[c.major] / h)));
+    // Each layer holds one coordinate of the major axis, in ascending order.
+    const std::vector<float>* p[3] = {&s.px, &s.py, &s.pz};
+    float previous = -1;
+    for (const SlotRange& layer : g.layers()) {
+      const float first = std::floor((*p[c.major])[layer.begin] / h);
+      EXPECT_GT(first, previous);
+      previous = first;
+      for (std::uint32_t i = layer.begin; i < layer.end; ++i) ASSERT_EQ(std::floor((*p[c.major])[i] / h), first);
+    }
+    EXPECT_EQ(gridPairs(g, s, h, nullptr), brutePairs(s, h));
+  }
+}
+
 }  // namespace
 }  // namespace softsub::neighbors
