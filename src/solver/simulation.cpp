@@ -75,6 +75,21 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     reach_[a] = r > 0 && std::isfinite(r) ? r : cellSize_;
   }
   substeps_ = std::max(1, model_.substeps);
+  // Where each material's centres meet the container walls (one radius inside; a box
+  // narrower than a particle holds it in the middle), once rather than per particle.
+  if (model_.container) {
+    const Container& box = *model_.container;
+    for (const MaterialInfo& m : model_.materials) {
+      std::array<float, 3> lo{}, hi{};
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = static_cast<float>(box.lo[a]) + m.radius;
+        hi[a] = static_cast<float>(box.hi[a]) - m.radius;
+        if (lo[a] > hi[a]) lo[a] = hi[a] = 0.5f * static_cast<float>(box.lo[a] + box.hi[a]);
+      }
+      wallLo_.push_back(lo);
+      wallHi_.push_back(hi);
+    }
+  }
   if (model_.adaptiveSubsteps) {
     const int stable = assessStability(model_, &state_).minimumSubsteps;
     stableSubsteps_ = stable > 0 ? stable : model_.maxSubsteps;
@@ -200,13 +215,12 @@ void Simulation::applyWalls() {
   const float mu = static_cast<float>(box.friction);
   float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
   float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
-  const MaterialInfo* mats = model_.materials.data();
+  const std::array<float, 3>* wallLo = wallLo_.data();
+  const std::array<float, 3>* wallHi = wallHi_.data();
   forEachSlot(s.size(), [&](std::size_t i) {
-    const float r = mats[s.material[i]].radius;
+    const std::uint16_t m = s.material[i];
     for (int a = 0; a < 3; ++a) {
-      float lo = static_cast<float>(box.lo[a]) + r;
-      float hi = static_cast<float>(box.hi[a]) - r;
-      if (lo > hi) lo = hi = 0.5f * static_cast<float>(box.lo[a] + box.hi[a]);
+      const float lo = wallLo[m][a], hi = wallHi[m][a];
       const bool lid = a != 1 || box.closed;
       float& p = pos[a][i];
       float& v = vel[a][i];

@@ -1,5 +1,6 @@
 #pragma once
 /// The stepper: the seed's stages, in order, on (Model, State).
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -137,6 +138,7 @@ class Simulation {
   rigid::RigidSolver rigid_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
   std::vector<float> rowRadius_, materialInverseMass_, materialRadius_;
+  std::vector<std::array<float, 3>> wallLo_, wallHi_;  // per material: the walls' centre bounds
   fluid::ListOptions listOptions_;
 };
 
