@@ -74,6 +74,8 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     float r = rowRadius_.empty() ? std::sqrt(model_.table.rowCutoff2(a)) : rowRadius_[a];
     reach_[a] = r > 0 && std::isfinite(r) ? r : cellSize_;
   }
+  invReach_.resize(nm);
+  for (std::size_t a = 0; a < nm; ++a) invReach_[a] = 1.0f / reach_[a];
   substeps_ = std::max(1, model_.substeps);
   // Where each material's centres meet the container walls (one radius inside; a box
   // narrower than a particle holds it in the middle), once rather than per particle.
@@ -298,7 +300,7 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
   const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
               gz = static_cast<float>(model_.gravity.z());
   const MaterialInfo* mats = model_.materials.data();
-  const float* reach = reach_.data();
+  const float* invReach = invReach_.data();
   auto join = [](Extremes a, const Extremes& b) {
     a.speed = std::max(a.speed, b.speed);
     a.acceleration = std::max(a.acceleration, b.acceleration);
@@ -311,10 +313,10 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
         float speed2 = 0, accel2 = 0;  // in reach units
         bool finite = true;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const float inv = 1.0f / reach[s.material[i]];
-          // x - x is 0 for a finite x and NaN otherwise.
-          finite = finite && (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
-          finite = finite && (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
+          const float inv = invReach[s.material[i]];
+          // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
+          finite &= (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
+          finite &= (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
           // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
           const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
           speed2 = std::max(speed2, v2);

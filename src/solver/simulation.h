@@ -123,6 +123,7 @@ class Simulation {
   int substepInFrame_ = 0; // substeps done in the current frame
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
+  std::vector<float> invReach_;  // 1 / reach_
   float cellSize_ = 1;  // longest cutoff
   float skin_ = 0;      // pair-list margin beyond the cutoff
   bool listValid_ = false;
