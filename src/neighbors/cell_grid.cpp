@@ -151,8 +151,8 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte
   order_ = nullptr;
 }
 
-// The 13 forward cells lie in 5 rows of constant (y, z); since cells are sorted by
-// (z, y, x) and each row's target keys grow with c, one cursor per offset walks the
+// The 13 forward cells lie in 5 rows of constant (middle, major) key field; since cells
+// are sorted by key and each row's target keys grow with c, one cursor per offset walks the
 // sorted cell keys (amortised O(1) per lookup when cells come in order; a jump seeks).
 // Offsets that wrap around the 21-bit torus use the hash table instead.
 std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
