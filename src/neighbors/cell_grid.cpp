@@ -15,6 +15,10 @@ namespace softsub::neighbors {
 
 namespace {
 
+// Exact sums of cell coordinates and their squares (GCC and Clang; __extension__ keeps
+// -Wpedantic quiet).
+__extension__ typedef unsigned __int128 U128;
+
 constexpr int kBits = 21;
 constexpr std::uint64_t kMask = (std::uint64_t{1} << kBits) - 1;
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
@@ -44,7 +48,8 @@ inline std::uint64_t hashKey(std::uint64_t k) {
   return k;
 }
 
-// The 13 forward offsets (dz, dy, dx) of a half shell, in increasing key order for
+// The 13 forward offsets of a half shell in key fields (major, middle, minor: (dz, dy, dx)
+// when the layers run along z), in increasing key order for
 // non-wrapping cells, so contiguous neighbours merge into one slot range.
 constexpr std::array<std::array<int, 3>, 13> kForward = {{
     {0, 0, 1},
@@ -108,32 +113,73 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte
         return a;
       });
   torus_ = false;
-  std::array<std::int64_t, 3> extent{};
   for (int a = 0; a < 3; ++a) {
     origin_[a] = n > 0 ? span.lo[a] : 0;
-    extent[a] = n > 0 ? span.hi[a] - span.lo[a] : 0;
-    if (extent[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
+    if (n > 0 && span.hi[a] - span.lo[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
   }
-  // The layers' axis (the key's major field): z, unless y spans half as many cells
-  // again (plus one), and then x likewise against the one chosen. Layers are the unit of
-  // parallel work, so a scene flat in z (a dam in the x-y plane) must not get one or two
-  // layers; the margin keeps a scene about as wide as deep from switching axis (each
-  // switch re-sorts every particle). A function of the positions alone, so a checkpoint
-  // restore rebuilds the same order.
+  // Keys in parallel over fixed blocks (each key is written once), first as (z, y, x),
+  // with each axis's sums of cell coordinates and of their squares: exact integers, so
+  // the same for any split and any particle order.
+  struct Moments {
+    std::array<U128, 3> sum{}, squares{};
+    void add(const Moments& o) {
+      for (int a = 0; a < 3; ++a) {
+        sum[a] += o.sum[a];
+        squares[a] += o.squares[a];
+      }
+    }
+  };
+  const Moments moments = tbb::parallel_reduce(
+      Range(0, n, 8192), Moments{},
+      [&](const Range& r, Moments m) {
+        for (std::size_t b = r.begin(); b < r.end(); b += 8192) {
+          std::array<std::uint64_t, 3> sum{}, squares{};  // 8192 * (2^21)^2 fits
+          for (std::size_t i = b; i < std::min(r.end(), b + 8192); ++i) {
+            const std::uint64_t c[3] = {wrappedCoord(store.px[i], invH, origin_[0]),
+                                        wrappedCoord(store.py[i], invH, origin_[1]),
+                                        wrappedCoord(store.pz[i], invH, origin_[2])};
+            keys_[i] = pack(c[0], c[1], c[2]);
+            for (int a = 0; a < 3; ++a) {
+              sum[a] += c[a];
+              squares[a] += c[a] * c[a];
+            }
+          }
+          for (int a = 0; a < 3; ++a) {
+            m.sum[a] += sum[a];
+            m.squares[a] += squares[a];
+          }
+        }
+        return m;
+      },
+      [](Moments a, const Moments& b) {
+        a.add(b);
+        return a;
+      });
+  // The layers' axis (the key's major field). Layers are the unit of parallel work, so
+  // a scene flat in z (a dam in the x-y plane) must not get one or two of them. The
+  // spread that decides is the variance of the cell coordinates, not the bounding box,
+  // so a few particles flung far (a splash) do not turn a pool's layers on their side:
+  // z, unless y's variance is 2.25 times z's plus one cell squared (a standard deviation
+  // half as large again), and then x likewise against the one chosen. The margin keeps a
+  // scene about as wide as deep on z. Exact integers of the positions alone: a checkpoint
+  // restore rebuilds the same order. (n^2 var = n sum c^2 - (sum c)^2, below 2^107.)
+  std::array<U128, 3> spread{};
+  const U128 count = n;
+  for (int a = 0; a < 3; ++a) spread[a] = count * moments.squares[a] - moments.sum[a] * moments.sum[a];
   int major = 2;
   for (const int a : {1, 0})
-    if (extent[a] >= extent[major] + extent[major] / 2 + 1) major = a;
+    if (4 * spread[a] >= 9 * spread[major] + 4 * count * count) major = a;
+  if (fixedAxis_ >= 0 && fixedAxis_ < 3) major = fixedAxis_;
   axes_ = major == 2 ? std::array<int, 3>{0, 1, 2} : major == 1 ? std::array<int, 3>{0, 2, 1} : std::array<int, 3>{1, 2, 0};
-  // Keys in parallel over fixed blocks (each key is written once), then whether they are
-  // already in order: a logical "and", the same for any split.
-  tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const std::uint64_t c[3] = {wrappedCoord(store.px[i], invH, origin_[0]),
-                                  wrappedCoord(store.py[i], invH, origin_[1]),
-                                  wrappedCoord(store.pz[i], invH, origin_[2])};
-      keys_[i] = pack(c[axes_[0]], c[axes_[1]], c[axes_[2]]);
-    }
-  });
+  if (major != 2)
+    tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const std::uint64_t k = keys_[i];
+        const std::uint64_t c[3] = {k & kMask, (k >> kBits) & kMask, k >> (2 * kBits)};
+        keys_[i] = pack(c[axes_[0]], c[axes_[1]], c[axes_[2]]);
+      }
+    });
+  // Whether the keys are already in order: a logical "and", the same for any split.
   const bool sorted = tbb::parallel_reduce(
       Range(1, std::max<std::size_t>(n, 1), 8192), true,
       [&](const Range& r, bool ok) {
@@ -327,8 +373,8 @@ void CellGrid::buildCells() {
   }
   cellStart_.push_back(static_cast<std::uint32_t>(n));
   // Phases of the layers (see layersByPhase). Layer k's pairs reach layer k + 1 only
-  // when their z coordinates are consecutive; the last layer reaches the first only
-  // across the wrap (z = 2^21 - 1 next to z = 0).
+  // when their major-axis coordinates are consecutive; the last layer reaches the first
+  // only across the wrap (coordinate 2^21 - 1 next to 0).
   for (auto& p : phases_) p.clear();
   phases_.resize(3);
   const std::size_t count = layers_.size();

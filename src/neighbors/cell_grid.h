@@ -22,7 +22,8 @@ struct SlotRange {
 ///
 /// Why this layout: cell coordinates, counted from the lowest occupied cell of each axis,
 /// are wrapped to 21 bits per axis and packed into one 64-bit key (major, middle, minor
-/// axis: (z, y, x) unless the scene is clearly longer along y or x, see keyAxes()); they
+/// axis: (z, y, x) unless the particles spread clearly more along y or x, see
+/// keyAxes()); they
 /// wrap only when an axis spans 2^21 - 1 cells or more (a particle flung far away), and
 /// only then is a hash of the occupied cells built for the offsets that wrap. Sorting
 /// particles by key puts each cell's particles next to each other and keeps rows of cells
@@ -36,6 +37,12 @@ struct SlotRange {
 /// once: the basis for applying Newton's third law.
 class CellGrid {
  public:
+  /// The layers' axis is chosen by each rebuild from the particles' spread (keyAxes()).
+  CellGrid() = default;
+  /// The layers' axis fixed: 0 x, 1 y, 2 z (tests and tools that need a known layout);
+  /// -1 chooses, as the default constructor does.
+  explicit CellGrid(int layerAxis) : fixedAxis_(layerAxis) {}
+
   /// Sorts `store` by cell of size `cellSize` (> 0) and rebuilds the cell lists.
   /// Permutes the store only when the order changed, and then its forces come back zero
   /// (ParticleStore::permute). Works in a buffer of its own (no allocation once warmed
@@ -93,7 +100,7 @@ class CellGrid {
   [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& layersByPhase() const { return phases_; }
   /// The physical axes (0 x, 1 y, 2 z) of the sort key's minor, middle and major field,
   /// as the last rebuild chose them: the major one is the layers' axis, z unless the
-  /// scene is clearly longer along y or x (see rebuild in cell_grid.cpp).
+  /// particles spread clearly more along y or x (see rebuild in cell_grid.cpp).
   [[nodiscard]] std::array<int, 3> keyAxes() const { return axes_; }
   /// The cell size used by the last rebuild.
   [[nodiscard]] float cellSize() const { return cellSize_; }
@@ -142,6 +149,7 @@ class CellGrid {
   std::array<std::int64_t, 3> origin_{};  // the lowest cell coordinates of the last rebuild
   bool torus_ = false;  // some axis spans 2^21 - 1 cells or more: coordinates wrap
   std::array<int, 3> axes_{0, 1, 2};  // physical axis of each key field (minor, middle, major)
+  int fixedAxis_ = -1;                // the layers' axis when fixed, else -1
 };
 
 /// Brute-force reference: every pair (i < j) closer than `cutoff`, O(n^2). Tests only.

@@ -263,14 +263,18 @@ TEST(CellGrid, ShuffledInputSortsStablyInCrowdedCellsWideCloudsAndTori) {
     g.rebuild(s, c.h);
     ASSERT_TRUE(g.reordered());
     expectStableByCell(g, s);
-    if (!c.torus)  // (wrapped keys are ordered by wrapped coordinates)
+    if (!c.torus) {  // (wrapped keys are ordered by wrapped coordinates)
+      const std::array<int, 3> axes = g.keyAxes();
+      const std::vector<float>* p[3] = {&s.px, &s.py, &s.pz};
       for (std::size_t k = 1; k < g.cellCount(); ++k) {
         const std::uint32_t a = g.cell(k - 1).begin, b = g.cell(k).begin;
         const auto key = [&](std::uint32_t i) {
-          return std::array<float, 3>{std::floor(s.pz[i] / c.h), std::floor(s.py[i] / c.h), std::floor(s.px[i] / c.h)};
+          return std::array<float, 3>{std::floor((*p[axes[2]])[i] / c.h), std::floor((*p[axes[1]])[i] / c.h),
+                                      std::floor((*p[axes[0]])[i] / c.h)};
         };
-        ASSERT_LT(key(a), key(b)) << "cells ascending by (z, y, x)";
+        ASSERT_LT(key(a), key(b)) << "cells ascending by (major, middle, minor) axis";
       }
+    }
     EXPECT_EQ(gridPairs(g, s, c.h, nullptr), brutePairs(s, c.h)) << c.n << " particles";
   }
 }
@@ -304,22 +308,33 @@ TEST(CellGrid, WorkMemoryFromTheCallerGivesTheSameResult) {
   EXPECT_THROW(lent.rebuild(b, 0.8f, bytes.subspan(4)), std::invalid_argument);
 }
 
-// The layers (the unit of parallel work) run along z unless the scene is clearly longer
-// along y or x: a dam flat in z gets one layer per x cell, not one or two.
-TEST(CellGrid, LayersRunAlongTheLongestAxisWithAMarginForZ) {
+// The layers (the unit of parallel work) run along z unless the particles spread clearly
+// more along y or x: a dam flat in z gets one layer per x cell, not one or two; a pool
+// with one particle flung high keeps its layers along z; a fixed axis is kept.
+TEST(CellGrid, LayersRunAlongTheAxisOfLargestSpreadWithAMarginForZ) {
   struct Case {
     float x, y, z;  // the box's side on each axis (from 0)
     int major;      // expected layers' axis
+    bool outlier = false;
+    int fixed = -1;
   };
   for (const Case& c : {Case{110, 55, 2, 0}, Case{6, 40, 6, 1}, Case{14, 10, 10, 2}, Case{20, 30, 10, 1},
-                        Case{12, 12, 12, 2}}) {
+                        Case{12, 12, 12, 2}, Case{60, 3, 60, 2, true}, Case{12, 12, 12, 0, false, 0}}) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     ParticleStore s;
     const std::size_t n = 6000;
     for (std::size_t i = 0; i < n; ++i) s.add(c.x * u(rng), c.y * u(rng), c.z * u(rng), 0, 0, 0, 0, 0);
-    CellGrid g;
+    CellGrid g(c.fixed);
     const float h = 1.0f;
+    if (c.outlier) {  // the bounding box is now 100 cells high, the pool 60 wide
+      s.add(30.5f, 100.5f, 30.5f, 0, 0, 0, 0, 0);
+      g.rebuild(s, h);
+      EXPECT_EQ(g.keyAxes()[2], 2);
+      EXPECT_EQ(g.layers().size(), 60u);
+      EXPECT_EQ(gridPairs(g, s, h, nullptr), brutePairs(s, h));
+      continue;
+    }
     g.rebuild(s, h);
     const std::array<int, 3> axes = g.keyAxes();
     EXPECT_EQ(axes[2], c.major) << c.x << " x " << c.y << " x " << c.z;
