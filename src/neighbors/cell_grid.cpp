@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <stdexcept>
 
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
