@@ -1,5 +1,6 @@
 #include "geometry/mesh_loader.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cerrno>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -227,34 +229,61 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
   // assimp's PLY reader loops without end on some malformed headers (found by the fuzzer:
   // fuzz/regressions/mesh_loader/ply-header-hang), so the header must be lines of the
   // known keywords ending with end_header.
-  bool ended = false;
+  // Each line is checked whole, not only its keyword: assimp's PLY reader corrupts its
+  // heap on a property line with a garbled type (found by the fuzzer:
+  // fuzz/regressions/mesh_loader/ply-garbled-property-heap).
+  bool ended = false, format = false, inElement = false;
   int lines = 0;
+  const auto isType = [](const std::string& w) {
+    static const char* const kTypes[] = {"char",  "uchar",  "short",   "ushort",  "int",    "uint",
+                                         "float", "double", "int8",    "uint8",   "int16",  "uint16",
+                                         "int32", "uint32", "float32", "float64"};
+    return std::any_of(std::begin(kTypes), std::end(kTypes), [&](const char* k) { return w == k; });
+  };
   for (; lines < 10000 && std::getline(in, line); ++lines) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line);
-    std::string word;
-    words >> word;
+    const int at = lines + 2;  // the file's line number
+    const auto bad = [&](const std::string& what, const std::string& allowed) {
+      return InputError({name, at, "mesh"}, what, allowed);
+    };
+    if (std::any_of(line.begin(), line.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20 && ch != '\t'; }))
+      throw bad("this line of the PLY header holds a control character", "printable text in the header");
+    std::istringstream fields(line);
+    std::vector<std::string> words;
+    for (std::string w; fields >> w;) words.push_back(w);
+    const std::string word = words.empty() ? std::string() : words[0];
     if (word == "end_header") {
       ended = true;
       break;
     }
-    if (word != "format" && word != "comment" && word != "obj_info" && word != "element" &&
-        word != "property" && !word.empty())
-      throw InputError({name, lines + 2, "mesh"},
-                       "this line of the PLY header is not a header line",
-                       "format, comment, obj_info, element, property and end_header lines");
-    if (word == "element") {
+    if (word == "format") {
+      if (format) throw bad("the PLY header has a second format line", "one format line");
+      if (words.size() != 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
+        throw bad("this format line is not 'format <ascii|binary_little_endian|binary_big_endian> <version>'",
+                  "format ascii 1.0, format binary_little_endian 1.0, format binary_big_endian 1.0");
+      format = true;
+    } else if (word == "element") {
       close();
-      std::string countText;
-      words >> element >> countText;
+      if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string::npos)
+        throw bad("this element line is not 'element <name> <count>'", "element <name> <count of digits>");
+      element = words[1];
       count = 0;
-      for (char ch : countText) {
-        if (ch < '0' || ch > '9' || count > size) break;
+      for (char ch : words[2]) {
+        if (count > size) break;
         count = count * 10 + static_cast<std::uintmax_t>(ch - '0');
       }
       hasProperty = false;
+      inElement = true;
     } else if (word == "property") {
+      const bool list = words.size() == 5 && words[1] == "list" && isType(words[2]) && isType(words[3]);
+      if (!list && !(words.size() == 3 && isType(words[1])))
+        throw bad("this property line is not 'property <type> <name>' or 'property list <type> <type> <name>'",
+                  "types char, uchar, short, ushort, int, uint, float, double (or int8 .. float64)");
+      if (!inElement) throw bad("this property comes before any element", "property lines after an element line");
       hasProperty = true;
+    } else if (word != "comment" && word != "obj_info" && !word.empty()) {
+      throw bad("this line of the PLY header is not a header line",
+                "format, comment, obj_info, element, property and end_header lines");
     }
   }
   if (!ended)
