@@ -256,8 +256,9 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
 namespace {
 
 // Orders the pairs (keys[i], order[i]) by key, then by order, in place. With `order`
-// the slots the keys came from, this is the stable sort by key.
-void insertionSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n) {
+// the slots the keys came from, this is the stable sort by key. Gives up (returns
+// false, the pairs partly sorted) once it has moved more than `budget` pairs in all.
+bool insertionSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, std::size_t budget = SIZE_MAX) {
   for (std::size_t i = 1; i < n; ++i) {
     const std::uint64_t k = keys[i];
     const std::uint32_t o = order[i];
@@ -268,7 +269,10 @@ void insertionSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n) {
     }
     keys[j] = k;
     order[j] = o;
+    if (i - j > budget) return false;
+    budget -= i - j;
   }
+  return true;
 }
 
 // The same order by an in-place most-significant-digit radix sort (American flag sort):
@@ -327,26 +331,7 @@ void CellGrid::sortKeys() {
   // slots per particle, so its worst case stays O(n).
   std::size_t descents = 0;
   for (std::size_t i = 1; i < n; ++i) descents += keys[i] < keys[i - 1];
-  if (descents * 32 < n) {
-    std::size_t budget = 8 * n;
-    bool done = true;
-    for (std::size_t i = 1; i < n && done; ++i) {
-      const std::uint64_t k = keys[i];
-      const std::uint32_t o = order[i];
-      std::size_t j = i;
-      while (j > 0 && keys[j - 1] > k) {
-        keys[j] = keys[j - 1];
-        order[j] = order[j - 1];
-        --j;
-      }
-      keys[j] = k;
-      order[j] = o;
-      const std::size_t moved = i - j;
-      if (moved > budget) done = false;
-      else budget -= moved;
-    }
-    if (done) return;
-  }
+  if (descents * 32 < n && insertionSort(keys, order, n, 8 * n)) return;
 
   std::uint64_t allOr = 0, allAnd = ~std::uint64_t{0};
   for (std::size_t i = 0; i < n; ++i) {

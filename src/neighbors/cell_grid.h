@@ -23,12 +23,11 @@ struct SlotRange {
 /// Why this layout: cell coordinates, counted from the lowest occupied cell of each axis,
 /// are wrapped to 21 bits per axis and packed into one 64-bit key (major, middle, minor
 /// axis: (z, y, x) unless the particles spread clearly more along y or x, see
-/// keyAxes()); they
-/// wrap only when an axis spans 2^21 - 1 cells or more (a particle flung far away), and
-/// only then is a hash of the occupied cells built for the offsets that wrap. Sorting
-/// particles by key puts each cell's particles next to each other and keeps rows of cells
-/// contiguous, so the three cells (minor - 1 .. minor + 1) of a neighbouring row usually
-/// form a single slot range. Wrapping can only make far-apart
+/// keyAxes()); they wrap only when an axis spans 2^21 - 1 cells or more (a particle
+/// flung far away), and only then is a hash of the occupied cells built for the offsets
+/// that wrap. Sorting particles by key puts each cell's particles next to each other and
+/// keeps rows of cells contiguous, so the three cells (minor - 1 .. minor + 1) of a
+/// neighbouring row usually form a single slot range. Wrapping can only make far-apart
 /// cells share a key (then the distance test rejects their pairs); it never separates
 /// true neighbours, and no array is ever sized by the spatial extent.
 ///
@@ -88,9 +87,9 @@ class CellGrid {
     std::array<SlotRange, 13> ranges_{};
   };
   /// Slot ranges of the layers: the cells of one coordinate on the sort key's major axis
-  /// (keyAxes()[2]) are contiguous slots. A cell's forward neighbours lie in its own layer or the
-  /// next one, so the pairs of layers k and k + 2 never share a particle: the basis for
-  /// deterministic parallel work (layersByPhase).
+  /// (keyAxes()[2]) are contiguous slots. A cell's forward neighbours lie in its own
+  /// layer or the next one, so the pairs of layers k and k + 2 never share a particle: the
+  /// basis for deterministic parallel work (layersByPhase).
   [[nodiscard]] std::span<const SlotRange> layers() const { return layers_; }
   /// The layers' indices grouped into phases: within a phase no two layers are
   /// neighbours, so tasks of one phase that write to their own layer and the next one

@@ -123,11 +123,13 @@ bool Simulation::listIsStale() const {
       }
     }
   };
+  const std::size_t n = s.size();
+  const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
   const Top2 top = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, s.size(), kBlock), Top2{},
       [&](const tbb::blocked_range<std::size_t>& r, Top2 t) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const float dx = s.px[i] - refX_[i], dy = s.py[i] - refY_[i], dz = s.pz[i] - refZ_[i];
+          const float dx = s.px[i] - rx[i], dy = s.py[i] - ry[i], dz = s.pz[i] - rz[i];
           t.add(dx * dx + dy * dy + dz * dz);
         }
         return t;
@@ -354,7 +356,7 @@ double Simulation::travelPerSubstep() const {
 Simulation::ListReference Simulation::listReference() const {
   if (!listValid_) return {};
   const std::size_t n = state_.particles.size();
-  return {{refX_, n}, {refY_, n}, {refZ_, n}};
+  return {{ref_, n}, {ref_ + n, n}, {ref_ + 2 * n, n}};
 }
 
 void Simulation::reserveListWork() {
@@ -365,13 +367,11 @@ void Simulation::reserveListWork() {
 void Simulation::holdReference(std::span<const float> x, std::span<const float> y, std::span<const float> z) {
   const std::size_t n = x.size();
   float* ref = reuseStorageAs<float>(listWork_.bytes().data(), 3 * n);
-  refX_ = ref;
-  refY_ = ref + n;
-  refZ_ = ref + 2 * n;
+  ref_ = ref;
   forEachSlot(n, [&](std::size_t i) {
-    refX_[i] = x[i];
-    refY_[i] = y[i];
-    refZ_[i] = z[i];
+    ref[i] = x[i];
+    ref[n + i] = y[i];
+    ref[2 * n + i] = z[i];
   });
 }
 
@@ -497,7 +497,7 @@ void Simulation::reportBlowUp() const {
       if (!std::isfinite((*arrays[a])[i])) p = fmt::format("{} is {}", names[a], (*arrays[a])[i]);
     if (p.empty() && limit > 0) {
       // The check's own arithmetic (scanParticles), so the particle it flagged is found.
-      const float inv = 1.0f / reach_[s.material[i]];
+      const float inv = invReach_[s.material[i]];
       const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
       if (std::sqrt(v2) > limit)
         p = fmt::format("speed is {:.6g} units/s, beyond the limit of {:.6g} units/s ({} interaction distances of "

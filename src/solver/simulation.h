@@ -131,9 +131,7 @@ class Simulation {
   // Positions when the list was built (valid with listValid_), in listWork_, which the
   // grid uses as its work memory during a rebuild (core/work_buffer.h).
   WorkBuffer listWork_;
-  float* refX_ = nullptr;
-  float* refY_ = nullptr;
-  float* refZ_ = nullptr;
+  const float* ref_ = nullptr;  // x of every slot, then y, then z
   mutable std::vector<std::uint32_t> slotOfId_;
   // Rigid bodies.
   rigid::RigidSolver rigid_;
