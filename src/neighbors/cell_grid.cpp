@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -279,7 +280,8 @@ bool insertionSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, std
 // bytes from `shift` down, skipping those in which no key differs (`varying`); small
 // buckets finish by insertion, and buckets of equal keys by slot. In place, so a
 // rebuild needs no sort buffer (12 bytes a particle, as an LSD radix sort would).
-void radixSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, int shift, std::uint64_t varying) {
+void radixSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, int shift, std::uint64_t varying,
+               bool parallel) {
   constexpr std::size_t kSmall = 48;
   if (n <= kSmall) {
     insertionSort(keys, order, n);
@@ -311,34 +313,67 @@ void radixSort(std::uint64_t* keys, std::uint32_t* order, std::size_t n, int shi
       ++next[b];
     }
   }
-  for (std::size_t b = 0; b < 256; ++b)
+  // The buckets are independent: sorted in parallel (the order is total, so the result
+  // is the same for any split). Only the first level splits: below it the buckets are
+  // small enough for one task.
+  const auto sortBucket = [&](std::size_t b) {
     if (start[b + 1] - start[b] > 1)
-      radixSort(keys + start[b], order + start[b], start[b + 1] - start[b], shift - 8, varying);
+      radixSort(keys + start[b], order + start[b], start[b + 1] - start[b], shift - 8, varying, false);
+  };
+  if (parallel)
+    tbb::parallel_for(std::size_t{0}, std::size_t{256}, sortBucket);
+  else
+    for (std::size_t b = 0; b < 256; ++b) sortBucket(b);
 }
 
 }  // namespace
 
 // Stable sort of the particle slots by key. Nearly sorted input (the usual case from
 // one substep to the next) takes an insertion sort; otherwise the in-place radix sort.
+// Both run in parallel: the order (key, then slot) is total, so any split of the work
+// gives the same result.
 void CellGrid::sortKeys() {
+  using Range = tbb::blocked_range<std::size_t>;
   const std::size_t n = n_;
   std::uint64_t* keys = keys_;
   std::uint32_t* order = order_;
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  tbb::parallel_for(Range(0, n, 8192), [&](const Range& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  });
 
   // Insertion sort while the data is nearly sorted; it gives up (the radix sort then
   // finishes from wherever it stopped, still correct) once it has moved more than a few
-  // slots per particle, so its worst case stays O(n).
-  std::size_t descents = 0;
-  for (std::size_t i = 1; i < n; ++i) descents += keys[i] < keys[i - 1];
-  if (descents * 32 < n && insertionSort(keys, order, n, 8 * n)) return;
+  // slots per particle, so its worst case stays O(n). Fixed blocks are sorted first, in
+  // parallel; one pass over the whole array then moves only the pairs that crossed a
+  // block boundary.
+  const std::size_t descents = tbb::parallel_reduce(
+      Range(1, std::max<std::size_t>(n, 1), 8192), std::size_t{0},
+      [&](const Range& r, std::size_t d) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) d += keys[i] < keys[i - 1];
+        return d;
+      },
+      std::plus<>());
+  if (descents * 32 < n) {
+    constexpr std::size_t kBlock = 16384;
+    const bool blocks = tbb::parallel_reduce(
+        Range(0, (n + kBlock - 1) / kBlock, 1), true,
+        [&](const Range& r, bool ok) {
+          for (std::size_t b = r.begin(); b != r.end() && ok; ++b) {
+            const std::size_t from = b * kBlock, len = std::min(kBlock, n - from);
+            ok = insertionSort(keys + from, order + from, len, 8 * len);
+          }
+          return ok;
+        },
+        [](bool a, bool b) { return a && b; });
+    if (blocks && insertionSort(keys, order, n, 8 * n)) return;
+  }
 
   std::uint64_t allOr = 0, allAnd = ~std::uint64_t{0};
   for (std::size_t i = 0; i < n; ++i) {
     allOr |= keys[i];
     allAnd &= keys[i];
   }
-  radixSort(keys, order, n, 56, allOr ^ allAnd);
+  radixSort(keys, order, n, 56, allOr ^ allAnd, true);
 }
 
 void CellGrid::buildCells() {

@@ -9,6 +9,8 @@
 #include <span>
 #include <stdexcept>
 
+#include <tbb/global_control.h>
+
 #include "neighbors/cell_grid.h"
 
 namespace softsub::neighbors {
@@ -276,6 +278,44 @@ TEST(CellGrid, ShuffledInputSortsStablyInCrowdedCellsWideCloudsAndTori) {
       }
     }
     EXPECT_EQ(gridPairs(g, s, c.h, nullptr), brutePairs(s, c.h)) << c.n << " particles";
+  }
+}
+
+// The nearly sorted path sorts fixed blocks in parallel and then joins them; the radix
+// sort splits its first level across threads. Either way the order is the stable one and
+// the same on 1 and 3 threads: a store of several blocks where every particle moved a
+// little, some moved across many blocks (both ways), and then one where so many moved
+// that the insertion sort gives up.
+TEST(CellGrid, ParallelSortGivesTheStableOrderOnAnyThreadCount) {
+  for (const double farShare : {0.0003, 0.2}) {
+    ParticleStore base = cloud(70000, 0.0f, 40.0f, 31);
+    CellGrid(2).rebuild(base, 1.0f);
+    std::mt19937 rng(static_cast<std::uint32_t>(farShare * 1000));
+    std::uniform_real_distribution<float> u(0.0f, 1.0f), jitter(-0.01f, 0.01f), far(3.0f, 12.0f);
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      base.id[i] = static_cast<std::uint32_t>(i);
+      base.px[i] = std::clamp(base.px[i] + jitter(rng), 0.0f, 39.99f);
+      if (u(rng) < farShare)  // z is the layers' axis: 3-12 layers reach across a block of slots
+        base.pz[i] = std::clamp(base.pz[i] + (u(rng) < 0.5f ? -far(rng) : far(rng)), 0.0f, 39.99f);
+    }
+    std::vector<std::vector<std::uint32_t>> orders;
+    for (const int threads : {1, 3}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      ParticleStore s = base;
+      CellGrid g(2);
+      g.rebuild(s, 1.0f);
+      ASSERT_TRUE(g.reordered());
+      expectStableByCell(g, s);
+      for (std::size_t c = 1; c < g.cellCount(); ++c) {
+        const std::uint32_t a = g.cell(c - 1).begin, b = g.cell(c).begin;
+        const auto key = [&](std::uint32_t i) {
+          return std::array<float, 3>{std::floor(s.pz[i]), std::floor(s.py[i]), std::floor(s.px[i])};
+        };
+        ASSERT_LT(key(a), key(b)) << "cells ascending by (z, y, x)";
+      }
+      orders.push_back(s.id);
+    }
+    EXPECT_EQ(orders[0], orders[1]) << "far share " << farShare;
   }
 }
 
