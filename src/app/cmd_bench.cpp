@@ -256,9 +256,13 @@ int benchLammpsCommand(const BenchOptions& o) {
   const fs::path dir = o.keep.empty() ? fs::temp_directory_path() / fmt::format("softsub-bench-{}", ::getpid())
                                       : fs::path(o.keep);
   fs::create_directories(dir);
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  // One thread, then --threads (all cores by default). The root's --threads also caps
+  // the whole process (main.cpp), so a second row above it would run on fewer threads
+  // than it says.
+  const unsigned most =
+      o.threads > 0 ? static_cast<unsigned>(o.threads) : std::max(1u, std::thread::hardware_concurrency());
   std::vector<unsigned> threadCounts{1};
-  if (cores > 1) threadCounts.push_back(cores);
+  if (most > 1) threadCounts.push_back(most);
 
   fmt::print("# softsub vs LAMMPS: LJ liquid, fcc at density {}, jitter 0.02 sigma, at rest, {} steps of {} tau, "
              "velocity Verlet, reflective walls\n", kDensity, o.steps, kTimeStep);

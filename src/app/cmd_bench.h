@@ -18,6 +18,7 @@ struct BenchOptions {
   int steps = 100;                             ///< velocity-Verlet steps of 0.005 tau
   std::string lammps;                          ///< LAMMPS binary; empty: lmp on PATH
   std::string keep;                            ///< folder to keep the inputs in; empty: none kept
+  int threads = 0;                             ///< the root's --threads: the second row's count; 0: all cores
 };
 
 /// Adds `bench` (with its `lammps` subcommand) and returns `bench`.

@@ -94,6 +94,7 @@ int runApp(int argc, char** argv) {
   if (render->parsed()) return app::renderCommand(renderOptions);
   if (view->parsed()) return app::viewCommand(viewOptions);
   if (mesh->parsed()) return app::meshCommand(meshOptions);
+  benchOptions.threads = threads;
   if (bench->parsed()) return app::benchLammpsCommand(benchOptions);
   return code(ExitCode::BadInput);  // unreachable: a subcommand is required
 }

@@ -103,5 +103,23 @@ TEST(BenchCli, LammpsComparisonRunsOurSideAndLammpsWhenInstalled) {
   EXPECT_TRUE(fs::exists(tmp / "kept" / "lj-500-rc2.5.scene"));
 }
 
+TEST(BenchCli, LammpsRowsFollowTheThreadsOption) {
+  TempDir tmp;
+  // The rows are 1 thread and --threads: with --threads 1 one row only (a second row
+  // would claim more threads than the process may use), with --threads 3 a row for 3.
+  const std::string bench = "bench lammps --particles 32 --cutoff 2.5 --steps 2 --lammps /nonexistent/lmp";
+  const RunResult single = runSoftsub("--threads 1 " + bench, tmp.path());
+  ASSERT_EQ(single.code, 0) << single.err;
+  const auto one = statsRows(single.out);
+  ASSERT_EQ(one.size(), 1u) << single.out;
+  EXPECT_EQ(one[0].at(2), 1.0);
+  const RunResult three = runSoftsub(bench + " --threads 3", tmp.path());
+  ASSERT_EQ(three.code, 0) << three.err;
+  const auto rows = statsRows(three.out);
+  ASSERT_EQ(rows.size(), 2u) << three.out;
+  EXPECT_EQ(rows[0].at(2), 1.0);
+  EXPECT_EQ(rows[1].at(2), 3.0);
+}
+
 }  // namespace
 }  // namespace softsub::apptest
