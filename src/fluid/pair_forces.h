@@ -113,6 +113,19 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
 void accumulatePairForces(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                           ParticleStore& store);
 
+/// The instruction set the pair list build and the pair kernel run with. Both exist
+/// twice, compiled from one source: for the baseline (x86-64's SSE2, or whatever the
+/// build targets) and, on x86-64 built by GCC, for AVX2 without FMA, which the CPU's
+/// support selects at start-up. Both copies do the same IEEE operations in the same
+/// order: the lists and forces are bitwise the same (tests/fluid), only the speed
+/// differs.
+enum class Simd { Baseline, Avx2 };
+/// The copy in use (Avx2 where the CPU has it and the build made that copy).
+[[nodiscard]] Simd simdInUse();
+/// Selects a copy for what follows (tests, benchmarks); false, and nothing changes,
+/// when this build or CPU has no such copy. Not meant to change during a step.
+bool useSimd(Simd level);
+
 /// The same sum by brute force over all pairs, in double precision, straight from the
 /// functions' formulas (not the tables). Reference for tests; O(n^2).
 void referencePairForces(const forces::InteractionTable& table, const ParticleStore& store,

@@ -307,6 +307,53 @@ TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
   EXPECT_EQ(checked, 6);
 }
 
+// The two compiled copies of the list build and the kernel (Simd) list the same partners
+// and give bitwise the same forces: for every table kind, dense and sparse clouds, both
+// list encodings, on every thread count the test runs with. The default copy (AVX2 on
+// such a CPU) also runs every other test here.
+TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
+  struct Restore {
+    Simd was = simdInUse();
+    ~Restore() { useSimd(was); }
+  } restore;
+  if (!useSimd(Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
+  forces::InteractionTable lj(1);
+  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  forces::InteractionTable goo(1);
+  goo.set(0, 0, {ownFunction(FluidParams{}), 1.5, 0});
+  int checked = 0;
+  for (const forces::InteractionTable& table : {threeMaterials(), lj, goo})
+    for (const float hi : {3.0f, 6.0f})
+      for (const std::uint32_t span : {65536u, 0u}) {
+        ParticleStore s = scenarios::randomCloud(2500, -hi, hi, 2.0f, static_cast<std::uint16_t>(table.materials()), 5);
+        const float skin = 0.25f;
+        neighbors::CellGrid grid;
+        grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+        ListOptions options;
+        options.narrowSpan = span;
+        PairList wide, base;
+        ASSERT_TRUE(useSimd(Simd::Avx2));
+        wide.build(grid, table, s, skin, options);
+        ParticleStore a = s;
+        zeroForces(a);
+        accumulatePairForces(wide, table, a);
+        ASSERT_TRUE(useSimd(Simd::Baseline));
+        EXPECT_EQ(simdInUse(), Simd::Baseline);
+        base.build(grid, table, s, skin, options);
+        ParticleStore b = s;
+        zeroForces(b);
+        accumulatePairForces(base, table, b);
+        ASSERT_EQ(wide.pairCount(), base.pairCount());
+        ASSERT_GT(base.pairCount(), 1000u);
+        for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(wide.partners(i), base.partners(i)) << i;
+        EXPECT_EQ(a.fx, b.fx);
+        EXPECT_EQ(a.fy, b.fy);
+        EXPECT_EQ(a.fz, b.fz);
+        ++checked;
+      }
+  EXPECT_EQ(checked, 12);
+}
+
 // At the boundary of the 16-bit form: two layers of 256 x 128 cells, one particle each,
 // one cell apart in z with their particles 0.02 apart, span exactly 65,536 slots, so the
 // first layer stays 16-bit with a partner at offset 65,535; one particle more in the

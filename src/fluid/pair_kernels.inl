@@ -1,0 +1,307 @@
+// The hot loops of the pair list build and the pair kernel. Included twice by
+// pair_forces.cpp: once for the baseline instruction set and, on x86-64 with GCC, once
+// more under `#pragma GCC target("avx2")` (docs/architecture.md, "One source, two
+// instruction sets"). Not a header: it has no includes of its own and defines functions
+// in whatever namespace includes it.
+
+// Why a pair list: most candidates of a cell stencil are out of range, and sorting
+// plus filtering them costs as much as the forces. The list keeps the pairs within
+// cutoff + skin and serves several substeps. To build it, per cell the candidates (own
+// cell first, then the forward neighbour cells) are copied into a contiguous buffer;
+// per particle one loop computes squared distances over it (vectorised) and a
+// branch-free compaction writes the partners straight into the list.
+struct Candidates {
+  const float* __restrict x;
+  const float* __restrict y;
+  const float* __restrict z;
+  float* __restrict r2;
+  const std::uint32_t* __restrict entry;  // what the list stores for the candidate
+  const std::uint32_t* __restrict owner;  // filled only when the list excludes owners
+};
+
+// Squared distances from (xi, yi, zi) to buffer entries [from, len), into b.r2.
+inline void squaredDistances(const Candidates& b, std::uint32_t from, std::uint32_t len, float xi, float yi, float zi) {
+  for (std::uint32_t k = from; k < len; ++k) {
+    const float dx = b.x[k] - xi, dy = b.y[k] - yi, dz = b.z[k] - zi;
+    b.r2[k] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
+// The list entries of buffer entries [from, len) closer than sqrt(cut2) to (xi, yi, zi)
+// go to out, which has room for len - from. kExclusive: candidates of owner `own` are
+// dropped too (a rigid body's particles never pair with each other). Returns how many.
+template <bool kExclusive, class Out>
+inline std::uint32_t filter(const Candidates& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
+                            float zi, float cut2, std::uint32_t own, Out* __restrict out) {
+  squaredDistances(b, from, len, xi, yi, zi);
+  std::uint32_t n = 0;
+  for (std::uint32_t k = from; k < len; ++k) {
+    out[n] = static_cast<Out>(b.entry[k]);
+    bool keep = b.r2[k] < cut2;
+    if constexpr (kExclusive) keep = keep && b.owner[k] != own;
+    n += keep ? 1u : 0u;
+  }
+  return n;
+}
+
+// Makes room for `needed` entries in a layer's list. It grows by an eighth, not by
+// doubling: a list keeps its capacity from one build to the next (no allocation once
+// warmed up), so what matters is how far the capacity overshoots the list for good
+// (doubling left 8-10 bytes a particle unused), not the few copies of the first build.
+// No fixed minimum: a scene of sparse layers (spray, a thin column) would pay it per
+// layer.
+template <class V>
+void grow(V& list, std::size_t needed) {
+  const std::size_t target = std::max<std::size_t>(needed, list.size() + list.size() / 8);
+  list.reserve(target);  // exactly: resize alone would double the capacity
+  list.resize(target);
+}
+
+// One layer of PairList::build: its partners, written into its list (see build()).
+// Scratch: PairList's per-thread buffers (deduced: the type is private to PairList).
+template <class Scratch>
+void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t cellBegin, std::size_t cellEnd,
+                Scratch& buf, neighbors::CellGrid::ForwardRanges& forwardRanges, const neighbors::CellGrid& grid,
+                const ParticleStore& s, const ListOptions& options, const float* rowCut2) {
+  const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
+  layer.slots = slots;
+  const std::size_t rows = layer.slots.end - layer.slots.begin;
+  if (layer.start.capacity() < rows + 1) layer.start.reserve(rows + 1 + rows / 8);  // see grow()
+  layer.start.resize(rows + 1);
+  // Narrow (16-bit offsets) when every candidate lies within 65,536 slots from the
+  // layer's first one.
+  // The layer's cells' forward ranges are found once (the walker) and kept for the
+  // fill below.
+  std::uint32_t lowest = layer.slots.begin, highest = layer.slots.end;
+  buf.ranges.clear();
+  buf.rangeStart.clear();
+  for (std::size_t c = cellBegin; c < cellEnd; ++c) {
+    buf.rangeStart.push_back(static_cast<std::uint32_t>(buf.ranges.size()));
+    for (const neighbors::SlotRange& r : forwardRanges.of(c)) {
+      lowest = std::min(lowest, r.begin);
+      highest = std::max(highest, r.end);
+      buf.ranges.push_back(r);
+    }
+  }
+  buf.rangeStart.push_back(static_cast<std::uint32_t>(buf.ranges.size()));
+  layer.narrow = lowest >= layer.slots.begin &&
+                 highest - layer.slots.begin <= std::min<std::uint32_t>(options.narrowSpan, 65536);
+  // The list is written in place: its vector is used up to its capacity, grown when a
+  // particle's candidates might not fit, and cut to what was listed at the end.
+  auto fill = [&](auto& out, std::uint32_t entryBase) {
+    out.resize(out.capacity());
+    std::uint32_t listed = 0;
+    for (std::size_t c = cellBegin; c < cellEnd; ++c) {
+      const neighbors::SlotRange own = grid.cell(c);
+      const std::size_t cl = c - cellBegin;
+      const std::span<const neighbors::SlotRange> forward(buf.ranges.data() + buf.rangeStart[cl],
+                                                          buf.ranges.data() + buf.rangeStart[cl + 1]);
+      std::uint32_t len = own.end - own.begin;
+      for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
+      if (buf.x.size() < len) {
+        for (auto* v : {&buf.x, &buf.y, &buf.z, &buf.r2}) v->resize(len);
+        for (auto* v : {&buf.entry, &buf.owner}) v->resize(len);
+      }
+      std::uint32_t k = 0;
+      auto append = [&](std::uint32_t b, std::uint32_t e) {
+        for (std::uint32_t j = b; j < e; ++j, ++k) {
+          buf.x[k] = s.px[j]; buf.y[k] = s.py[j]; buf.z[k] = s.pz[j]; buf.entry[k] = j - entryBase;
+        }
+        if (exclusive)
+          for (std::uint32_t j = b, q = k - (e - b); j < e; ++j, ++q) buf.owner[q] = s.owner[j];
+      };
+      append(own.begin, own.end);
+      for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
+      const Candidates b{buf.x.data(), buf.y.data(), buf.z.data(), buf.r2.data(), buf.entry.data(), buf.owner.data()};
+      for (std::uint32_t i = own.begin; i < own.end; ++i) {
+        layer.start[i - layer.slots.begin] = listed;
+        const std::uint32_t from = i - own.begin + 1;
+        if (out.size() < listed + len) grow(out, listed + len);
+        const float cut2 = rowCut2[s.material[i]];
+        listed += exclusive && s.owner[i] >= options.exclusiveOwnersFrom
+                      ? filter<true>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed)
+                      : filter<false>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, 0, out.data() + listed);
+      }
+    }
+    out.resize(listed);
+    return listed;
+  };
+  const std::uint32_t listed = layer.narrow ? fill(layer.near, layer.slots.begin) : fill(layer.far, 0u);
+  // The other encoding's memory is given back (it is empty unless the layer just
+  // changed encoding: a layer near the 65,536-slot span would otherwise keep both).
+  if (layer.narrow)
+    std::vector<std::uint32_t>().swap(layer.far);
+  else
+    std::vector<std::uint16_t>().swap(layer.near);
+  layer.start.back() = listed;
+}
+
+// The pairs of the slots of one layer (see accumulatePairForces). kVelocity: some pair has
+// a damping or relative-velocity term; without (a conservative model such as the LJ
+// benchmark) the velocities are never loaded. kOneMaterial: a table of one material, whose
+// one entry's constants replace the per-pair gather of entries. All four instances are
+// this one code path.
+//
+// The layer's list goes through in chunks of kChunk pairs, whatever slots they belong to
+// (a fluid at rest lists only about 9 partners a slot: chunks per slot would spend their
+// time starting and ending short loops). Each chunk runs in passes that keep the indirect
+// loads apart from the arithmetic, so that the arithmetic (square root, division, clamps)
+// runs 4 wide in SIMD registers: gather the partners' offsets and their pair entries slot
+// by slot, compute distances and table positions, read the table, compute the forces,
+// then add them up slot by slot in partner order. Each slot's sum runs across chunks and
+// is added to its force when its last partner is done: the same order and the same
+// operations per pair as a plain loop over slots and partners, so the sums do not depend
+// on the chunking. Branch-free: a pair listed within the skin but out of range now
+// contributes exactly 0.
+template <bool kVelocity, bool kOneMaterial, class Index>
+void layerPairForces(const PairList::Layer& layer, const Index* __restrict list, std::uint32_t jBase,
+                     const forces::InteractionTable& table, ParticleStore& s) {
+  constexpr std::uint32_t kChunk = 64;
+  // One material (one pair entry): its constants, instead of a gather per pair.
+  const forces::PairEntry one = table.entries().front();
+  const std::size_t m = table.materials();
+  const forces::PairEntry* entries = table.entries().data();
+  const float* __restrict samples = table.samples().data();
+  // Every slot below is counted from jBase (list entries are slots - jBase).
+  const float* __restrict px = s.px.data() + jBase;
+  const float* __restrict py = s.py.data() + jBase;
+  const float* __restrict pz = s.pz.data() + jBase;
+  const float* __restrict vx = s.vx.data() + jBase;
+  const float* __restrict vy = s.vy.data() + jBase;
+  const float* __restrict vz = s.vz.data() + jBase;
+  float* __restrict fx = s.fx.data() + jBase;
+  float* __restrict fy = s.fy.data() + jBase;
+  float* __restrict fz = s.fz.data() + jBase;
+  const std::uint16_t* __restrict mat = s.material.data() + jBase;
+  const std::uint32_t* __restrict start = layer.start.data();
+  const std::uint32_t base = layer.slots.begin - jBase;
+  const std::uint32_t rows = layer.slots.end - layer.slots.begin;
+  const std::uint32_t total = start[rows];
+  alignas(64) float dxs[kChunk], dys[kChunk], dzs[kChunk], cut2[kChunk], invDr[kChunk], lastK[kChunk];
+  alignas(64) float dvxs[kChunk], dvys[kChunk], dvzs[kChunk], damp[kChunk], relv[kChunk];
+  alignas(64) float inv[kChunk], frac[kChunk], value[kChunk], gxs[kChunk], gys[kChunk], gzs[kChunk];
+  alignas(64) std::int32_t piece[kChunk], offset[kChunk];
+  // The slot whose sum is running (row), and its sum.
+  std::uint32_t row = 0;
+  float ax = 0, ay = 0, az = 0;
+  for (std::uint32_t q0 = 0; q0 < total; q0 += kChunk) {
+    const std::uint32_t n = std::min(kChunk, total - q0);
+    const Index* js = list + q0;
+    // 1. Gather, slot by slot: the partners' offsets and their pair entries.
+    for (std::uint32_t r = row, c = 0; c < n; ++r) {
+      const std::uint32_t end = std::min(start[r + 1] - q0, n);
+      const std::uint32_t i = base + r;
+      const forces::PairEntry* rowEntries = entries + mat[i] * m;
+      const float xi = px[i], yi = py[i], zi = pz[i];
+      const float uxi = vx[i], uyi = vy[i], uzi = vz[i];
+      for (; c < end; ++c) {
+        const std::uint32_t j = js[c];
+        dxs[c] = px[j] - xi;
+        dys[c] = py[j] - yi;
+        dzs[c] = pz[j] - zi;
+        if constexpr (!kOneMaterial) {
+          const forces::PairEntry& e = rowEntries[mat[j]];
+          cut2[c] = e.cutoff2;
+          invDr[c] = e.invDr;
+          lastK[c] = static_cast<float>(e.lastPiece);
+          offset[c] = static_cast<std::int32_t>(e.offset);
+          if constexpr (kVelocity) {
+            damp[c] = e.damping;
+            relv[c] = e.relativeVelocity;
+          }
+        }
+        if constexpr (kVelocity) {
+          dvxs[c] = vx[j] - uxi;
+          dvys[c] = vy[j] - uyi;
+          dvzs[c] = vz[j] - uzi;
+        }
+      }
+    }
+    // 2. Distances and table positions (SIMD). Out of range: inv = 0, so the pair adds
+    // 0; coincident particles have no direction (inv = 0): only damping acts. The
+    // position is clamped into the table (a NaN distance too: the comparison fails).
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float r2 = dxs[c] * dxs[c] + dys[c] * dys[c] + dzs[c] * dzs[c];
+      float cutoff2 = one.cutoff2, pieces = static_cast<float>(one.lastPiece), perR = one.invDr;
+      std::int32_t first = static_cast<std::int32_t>(one.offset);
+      if constexpr (!kOneMaterial) {
+        cutoff2 = cut2[c];
+        pieces = lastK[c];
+        perR = invDr[c];
+        first = offset[c];
+      }
+      const float in = r2 < cutoff2 ? 1.0f : 0.0f;
+      const float r = std::sqrt(r2);
+      // Divides unconditionally (by 1 for coincident particles) so that the loop has no
+      // branch: a division under a condition is not vectorised (it could trap).
+      const bool apart = r > 0;
+      inv[c] = (apart ? in : 0.0f) / (apart ? r : 1.0f);
+      if constexpr (kVelocity) damp[c] = (kOneMaterial ? one.damping : damp[c]) * in;
+      const float tMax = pieces + 1.0f, tr = r * perR;
+      const float t = tr < tMax ? tr : tMax;
+      const std::int32_t k = std::min(static_cast<std::int32_t>(t), static_cast<std::int32_t>(pieces));
+      piece[c] = first + 2 * k;
+      frac[c] = t - static_cast<float>(k);
+    }
+    // 3. The sampled function (the one indirect read of the table).
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float* p = samples + piece[c];
+      value[c] = p[0] + p[1] * frac[c];
+    }
+    // 4. The pair forces (SIMD): -F n, plus the velocity terms.
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
+      float gx = -value[c] * nx, gy = -value[c] * ny, gz = -value[c] * nz;
+      if constexpr (kVelocity) {
+        const float vn = (kOneMaterial ? one.relativeVelocity : relv[c]) * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
+        gx += vn * nx + damp[c] * dvxs[c];
+        gy += vn * ny + damp[c] * dvys[c];
+        gz += vn * nz + damp[c] * dvzs[c];
+      }
+      gxs[c] = gx;
+      gys[c] = gy;
+      gzs[c] = gz;
+    }
+    // 5. Newton's third law, slot by slot in partner order; a slot whose partners end in
+    // this chunk gets its sum (slots without partners get their 0 here too).
+    for (std::uint32_t c = 0; c < n;) {
+      const std::uint32_t end = std::min(start[row + 1] - q0, n);
+      for (; c < end; ++c) {
+        const std::uint32_t j = js[c];
+        ax += gxs[c]; ay += gys[c]; az += gzs[c];
+        fx[j] -= gxs[c]; fy[j] -= gys[c]; fz[j] -= gzs[c];
+      }
+      if (start[row + 1] - q0 <= n) {
+        fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
+        ax = ay = az = 0;
+        ++row;
+      }
+    }
+  }
+  // Slots after the last pair (no partners, or the last row ending on a chunk boundary).
+  for (; row < rows; ++row) {
+    fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
+    ax = ay = az = 0;
+  }
+}
+
+// The instance of layerPairForces for this table and this list encoding.
+template <class Index>
+void layerForces(const PairList::Layer& layer, const Index* list, std::uint32_t jBase,
+                 const forces::InteractionTable& table, ParticleStore& s) {
+  const bool velocity = table.hasVelocityTerms();
+  if (table.materials() == 1)
+    velocity ? layerPairForces<true, true>(layer, list, jBase, table, s)
+             : layerPairForces<false, true>(layer, list, jBase, table, s);
+  else
+    velocity ? layerPairForces<true, false>(layer, list, jBase, table, s)
+             : layerPairForces<false, false>(layer, list, jBase, table, s);
+}
+
+// The kernel for one layer, in its list encoding.
+inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
+  if (layer.narrow)
+    layerForces(layer, layer.near.data(), layer.slots.begin, table, s);
+  else
+    layerForces(layer, layer.far.data(), 0u, table, s);
+}
