@@ -27,6 +27,20 @@ forces::InteractionTable threeMaterials() {
   return t;
 }
 
+// Every function kind across three materials with velocity terms, the true LJ force
+// alone (no velocity terms), and the seed's goo alone (one material with viscosity).
+std::vector<forces::InteractionTable> threeTables() {
+  forces::InteractionTable lj(1);
+  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
+  forces::InteractionTable goo(1);
+  goo.set(0, 0, {ownFunction(FluidParams{}), 1.5, 0});
+  std::vector<forces::InteractionTable> out;
+  out.push_back(threeMaterials());
+  out.push_back(std::move(lj));
+  out.push_back(std::move(goo));
+  return out;
+}
+
 void zeroForces(ParticleStore& s) {
   std::fill(s.fx.begin(), s.fx.end(), 0.0f);
   std::fill(s.fy.begin(), s.fy.end(), 0.0f);
@@ -276,12 +290,8 @@ void plainLoopForces(const PairList& list, const forces::InteractionTable& table
 }
 
 TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
-  forces::InteractionTable lj(1);
-  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
-  forces::InteractionTable goo(1);
-  goo.set(0, 0, {ownFunction(FluidParams{}), 1.5, 0});
   int checked = 0;
-  for (const forces::InteractionTable& table : {threeMaterials(), lj, goo})
+  for (const forces::InteractionTable& table : threeTables())
     for (const float hi : {3.0f, 6.0f}) {  // dense (long rows, chunks of 64 full) and sparse
       ParticleStore s = scenarios::randomCloud(2500, -hi, hi, 2.0f, static_cast<std::uint16_t>(table.materials()), 9);
       const float skin = 0.25f;
@@ -317,12 +327,8 @@ TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
     ~Restore() { useSimd(was); }
   } restore;
   if (!useSimd(Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
-  forces::InteractionTable lj(1);
-  lj.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0, 0});
-  forces::InteractionTable goo(1);
-  goo.set(0, 0, {ownFunction(FluidParams{}), 1.5, 0});
   int checked = 0;
-  for (const forces::InteractionTable& table : {threeMaterials(), lj, goo})
+  for (const forces::InteractionTable& table : threeTables())
     for (const float hi : {3.0f, 6.0f})
       for (const std::uint32_t span : {65536u, 0u}) {
         ParticleStore s = scenarios::randomCloud(2500, -hi, hi, 2.0f, static_cast<std::uint16_t>(table.materials()), 5);
