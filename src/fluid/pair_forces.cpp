@@ -61,7 +61,6 @@ bool useSimd(Simd level) {
   return true;
 }
 
-
 // Per-thread build buffers: one cell's candidates (positions, slots, squared distances,
 // kept slots, owners). They grow to the densest neighbourhood seen, then stay.
 struct PairList::Scratch {
@@ -140,7 +139,6 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
     }
   });
 }
-
 
 void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
   const auto layers = list.layers();
