@@ -28,7 +28,7 @@ namespace baseline {
 }  // namespace baseline
 
 #if SOFTSUB_AVX2_CLONE
-// The same source for AVX2 without FMA: 8-wide passes and hardware gathers, the same
+// The same source for AVX2 without FMA: 8-wide passes (GCC 12 emits no gathers here), the same
 // IEEE operations in the same order, so the same bits as the baseline copy (tested).
 #pragma GCC push_options
 #pragma GCC target("avx2")
