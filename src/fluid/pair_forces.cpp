@@ -9,6 +9,10 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 // A second copy of the hot loops for AVX2 (chosen at run time) where the compiler can
 // make one and the build does not already target AVX2 for everything (SOFTSUB_NATIVE).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
@@ -24,7 +28,9 @@ namespace softsub::fluid {
 namespace {
 
 namespace baseline {
+#define SOFTSUB_KERNEL_AVX 0
 #include "fluid/pair_kernels.inl"
+#undef SOFTSUB_KERNEL_AVX
 }  // namespace baseline
 
 #if SOFTSUB_AVX2_CLONE
@@ -33,7 +39,9 @@ namespace baseline {
 #pragma GCC push_options
 #pragma GCC target("avx2")
 namespace avx2 {
+#define SOFTSUB_KERNEL_AVX 1  // GCC does not define __AVX__ inside the pragma
 #include "fluid/pair_kernels.inl"
+#undef SOFTSUB_KERNEL_AVX
 }  // namespace avx2
 #pragma GCC pop_options
 #endif
@@ -65,7 +73,7 @@ bool useSimd(Simd level) {
 // kept slots, owners). They grow to the densest neighbourhood seen, then stay.
 struct PairList::Scratch {
   struct Buffers {
-    std::vector<float> x, y, z, r2;
+    std::vector<float> x, y, z;
     std::vector<std::uint32_t> entry, owner;
     std::vector<neighbors::SlotRange> ranges;  // the forward ranges of one layer's cells
     std::vector<std::uint32_t> rangeStart;     // each cell's first in ranges
@@ -98,7 +106,7 @@ std::size_t PairList::memoryBytes() const {
   std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
   for (const Layer& l : layers_) b += (l.start.capacity() + l.far.capacity()) * 4 + l.near.capacity() * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
-    b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.r2.capacity() + s.entry.capacity() +
+    b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.entry.capacity() +
           s.owner.capacity() + s.rangeStart.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
   return b;
 }
