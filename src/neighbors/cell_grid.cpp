@@ -58,6 +58,8 @@ constexpr std::array<std::array<int, 3>, 13> kForward = {{
     {1, 0, -1}, {1, 0, 0}, {1, 0, 1},
     {1, 1, -1}, {1, 1, 0}, {1, 1, 1},
 }};
+// The first offset of each row of kForward (the same major and middle field).
+constexpr std::array<std::size_t, 5> kRowOffset = {0, 1, 4, 7, 10};
 
 }  // namespace
 
@@ -212,7 +214,34 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
   const std::uint64_t k = keys[c];
   const std::uint64_t x = k & kMask, y = (k >> kBits) & kMask, z = k >> (2 * kBits);
   std::size_t nf = 0;
-  for (std::size_t o = 0; o < kForward.size(); ++o) {
+  // The usual case, no offset wraps: the 13 cells are 5 rows of consecutive keys (x + 1
+  // in the own row, x - 1 .. x + 1 in the 4 others), already in key order. One cursor
+  // seeks each row's first key and the row's cells follow it, if present.
+  const bool inside = x > 0 && x < kMask && y > 0 && y < kMask && z < kMask;
+  if (inside) {
+    for (std::size_t row = 0; row < kRowOffset.size(); ++row) {
+      const std::size_t o = kRowOffset[row];  // the row's first offset: its cursor
+      const auto& off = kForward[o];
+      const std::uint64_t nk = pack(x + static_cast<std::uint64_t>(off[2]), y + static_cast<std::uint64_t>(off[1]),
+                                    z + static_cast<std::uint64_t>(off[0]));
+      std::size_t cur = cursor_[o];
+      if (((unseeked_ >> o) & 1u) != 0 || (cur > 0 && keys[cur - 1] >= nk)) {
+        cur = static_cast<std::size_t>(std::lower_bound(keys, keys + cells, nk) - keys);
+        unseeked_ &= ~(1u << o);
+      }
+      const std::size_t from = cur;
+      while (cur < cells && keys[cur] < nk) ++cur;
+      steps_ += cur - from;
+      const std::uint64_t width = row == 0 ? 1 : 3;
+      // The row's other offsets' cursors too, in case the next cell takes the path below.
+      for (std::size_t t = 0; t < width; ++t) cursor_[o + t] = cur;
+      for (std::uint64_t t = 0; t < width && cur < cells && keys[cur] < nk + width; ++cur, ++t)
+        found[nf++] = static_cast<std::uint32_t>(cur);  // keys ascend: cur's key is in the row
+    }
+  }
+  // Otherwise offset by offset; wrapping ones go through the hash table (torus) or find
+  // nothing.
+  for (std::size_t o = 0; !inside && o < kForward.size(); ++o) {
     const auto& off = kForward[o];
     const std::uint64_t nx = x + static_cast<std::uint64_t>(off[2]);
     const std::uint64_t ny = y + static_cast<std::uint64_t>(off[1]);
@@ -241,7 +270,7 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
     if (cell >= 0 && static_cast<std::size_t>(cell) != c) found[nf++] = static_cast<std::uint32_t>(cell);
   }
   // At most 13 entries: an insertion sort (cell indices are distinct: keys differ).
-  for (std::size_t a = 1; a < nf; ++a)
+  for (std::size_t a = 1; !inside && a < nf; ++a)
     for (std::size_t b = a; b > 0 && found[b - 1] > found[b]; --b) std::swap(found[b - 1], found[b]);
   std::size_t n = 0;
   for (std::size_t f = 0; f < nf; ++f) {
