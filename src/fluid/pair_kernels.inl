@@ -90,8 +90,8 @@ inline void packKept(const std::uint32_t* entry, std::uint32_t keep, Out* out) {
 // each other). Returns how many. Why masks: about one candidate in six is kept, and a
 // loop that wrote every candidate and advanced by its comparison (a branch-free
 // compaction) was half the list build's time, one dependent step per candidate; here
-// eight candidates cost one comparison, and the kept ones one permutation (AVX2) or one
-// bit scan each.
+// eight candidates cost one comparison, and the kept ones one permutation (AVX2), or
+// the old compaction over the block only when it keeps some (baseline).
 template <bool kExclusive, class Out>
 inline std::uint32_t filter(const Candidates& b, std::uint32_t from, std::uint32_t len, float xi, float yi,
                             float zi, float cut2, std::uint32_t own, Out* __restrict out, std::uint32_t room) {
@@ -103,15 +103,20 @@ inline std::uint32_t filter(const Candidates& b, std::uint32_t from, std::uint32
       for (std::uint32_t bits = keep; bits != 0; bits &= bits - 1)
         if (b.owner[k + static_cast<std::uint32_t>(__builtin_ctz(bits))] == own)
           keep &= ~(1u << __builtin_ctz(bits));
-#if SOFTSUB_KERNEL_AVX || defined(__AVX2__)
     if (n + kFilterBlock <= room) {  // almost always: the list keeps no slack for this
+#if SOFTSUB_KERNEL_AVX || defined(__AVX2__)
       packKept(b.entry + k, keep, out + n);
       n += static_cast<std::uint32_t>(__builtin_popcount(keep));
+#else
+      // Without a lane permutation: all eight written, the kept ones counted.
+      if (keep != 0)
+        for (std::uint32_t c = 0; c < kFilterBlock; ++c) {
+          out[n] = static_cast<Out>(b.entry[k + c]);
+          n += (keep >> c) & 1u;
+        }
+#endif
       continue;
     }
-#else
-    (void)room;
-#endif
     for (; keep != 0; keep &= keep - 1) out[n++] = static_cast<Out>(b.entry[k + static_cast<std::uint32_t>(__builtin_ctz(keep))]);
   }
   return n;
