@@ -69,8 +69,9 @@ bool useSimd(Simd level) {
   return true;
 }
 
-// Per-thread build buffers: one cell's candidates (positions, slots, squared distances,
-// kept slots, owners). They grow to the densest neighbourhood seen, then stay.
+// Per-thread build buffers: one cell's candidates (positions, list entries, owners, each
+// with a block of padding that filter() may read), and one layer's forward ranges. They
+// grow to the densest neighbourhood seen, then stay.
 struct PairList::Scratch {
   struct Buffers {
     std::vector<float> x, y, z;
