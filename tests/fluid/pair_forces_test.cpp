@@ -360,6 +360,54 @@ TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
   EXPECT_EQ(checked, 12);
 }
 
+// The list build tests candidates eight at a time and packs the kept ones (filter() in
+// pair_kernels.inl): whatever the number of candidates a particle has (clouds where it
+// has about 2, 27 or 220, so blocks end at every lane), with rigid owners excluded or
+// not, on a fresh list (no spare room: the bit-by-bit path) and on a rebuilt one, each
+// copy lists for slot i exactly the slots j > i within reach, in ascending order, as a
+// brute-force scan finds them with the same float arithmetic.
+TEST(PairList, ListsExactlyThePairsWithinReachOnEveryCopy) {
+  struct Restore {
+    Simd was = simdInUse();
+    ~Restore() { useSimd(was); }
+  } restore;
+  forces::InteractionTable table(1);
+  table.set(0, 0, {forces::Linear{5, 1.0, 0, 5}, 0, 0});
+  const float radius = 1.0f, skin = 0.1f;
+  const float reach = radius + skin, cut2 = reach * reach;
+  const std::vector<float> rowRadius{radius};
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    for (const float hi : {12.0f, 5.0f, 2.5f})
+      for (const std::uint32_t exclusiveFrom : {UINT32_MAX, 1u}) {
+        ParticleStore s = scenarios::randomCloud(1500, -hi, hi, 0.0f, 1, 11);
+        for (std::size_t i = 0; i < s.size(); ++i) s.owner[i] = static_cast<std::uint32_t>(i % 3);
+        neighbors::CellGrid grid;
+        grid.rebuild(s, reach);
+        PairList list;
+        for (int build = 0; build < 2; ++build) {
+          list.build(grid, table, s, skin, {.rowRadius = rowRadius, .exclusiveOwnersFrom = exclusiveFrom});
+          std::size_t total = 0;
+          for (std::size_t i = 0; i < s.size(); ++i) {
+            std::vector<std::uint32_t> expected;
+            for (std::size_t j = i + 1; j < s.size(); ++j) {
+              const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+              const bool sameBody = s.owner[i] >= exclusiveFrom && s.owner[i] == s.owner[j];
+              if (dx * dx + dy * dy + dz * dz < cut2 && !sameBody) expected.push_back(static_cast<std::uint32_t>(j));
+            }
+            ASSERT_EQ(list.partners(i), expected) << "slot " << i << ", extent " << hi << ", build " << build;
+            total += expected.size();
+          }
+          ASSERT_EQ(list.pairCount(), total);
+          ASSERT_GT(total, s.size() / 8);
+          ++checked;
+        }
+      }
+  }
+  EXPECT_GE(checked, 12);  // the baseline copy at least
+}
+
 // At the boundary of the 16-bit form: two layers of 256 x 128 cells, one particle each,
 // one cell apart in z with their particles 0.02 apart, span exactly 65,536 slots, so the
 // first layer stays 16-bit with a partner at offset 65,535; one particle more in the
