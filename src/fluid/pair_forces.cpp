@@ -114,6 +114,16 @@ std::size_t PairList::memoryBytes() const {
 
 void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                      const ParticleStore& s, float skin, const ListOptions& options) {
+  build(grid, table, s, skin, options, nullptr);
+}
+
+void PairList::buildAndAccumulate(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+                                  ParticleStore& s, float skin, const ListOptions& options) {
+  build(grid, table, s, skin, options, &s);
+}
+
+void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
+                     const ParticleStore& s, float skin, const ListOptions& options, ParticleStore* forces) {
   rowCut2_.resize(table.materials());
   for (std::size_t a = 0; a < rowCut2_.size(); ++a) {
     const float radius = options.rowRadius.empty() ? std::sqrt(table.rowCutoff2(a)) : options.rowRadius[a];
@@ -135,18 +145,36 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
     firstCell_[layerCount_] = static_cast<std::uint32_t>(grid.cellCount());
   }
   const Simd simd = simdInUse();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
-    Scratch::Buffers& buf = scratch_->perThread.local();
-    neighbors::CellGrid::ForwardRanges forwardRanges(grid);
-    for (std::size_t l = range.begin(); l != range.end(); ++l) {
-      if (simd == Simd::Avx2)
-        SOFTSUB_AVX2_ONLY(avx2::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges,
-                                           grid, s, options, rowCut2_.data()));
-      else
-        baseline::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges, grid, s,
-                             options, rowCut2_.data());
-    }
-  });
+  auto buildOne = [&](std::size_t l, Scratch::Buffers& buf, neighbors::CellGrid::ForwardRanges& forwardRanges) {
+    if (simd == Simd::Avx2)
+      SOFTSUB_AVX2_ONLY(avx2::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges,
+                                         grid, s, options, rowCut2_.data()));
+    else
+      baseline::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges, grid, s,
+                           options, rowCut2_.data());
+  };
+  if (forces == nullptr) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
+      Scratch::Buffers& buf = scratch_->perThread.local();
+      neighbors::CellGrid::ForwardRanges forwardRanges(grid);
+      for (std::size_t l = range.begin(); l != range.end(); ++l) buildOne(l, buf, forwardRanges);
+    });
+    return;
+  }
+  for (const std::vector<std::uint32_t>& phase : phases_) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
+      Scratch::Buffers& buf = scratch_->perThread.local();
+      neighbors::CellGrid::ForwardRanges forwardRanges(grid);
+      for (std::size_t p = range.begin(); p != range.end(); ++p) {
+        const std::size_t l = phase[p];
+        buildOne(l, buf, forwardRanges);
+        if (simd == Simd::Avx2)
+          SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layers_[l], table, *forces));
+        else
+          baseline::layerForcesOf(layers_[l], table, *forces);
+      }
+    });
+  }
 }
 
 void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {

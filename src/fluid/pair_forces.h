@@ -41,6 +41,11 @@ class PairList {
   /// own partner array: the list is the same for any number of threads.
   void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
              const ParticleStore& store, float skin, const ListOptions& options = {});
+  /// build(), and while each layer's list is fresh in cache, its pairs' forces added to
+  /// store.f as accumulatePairForces would (bitwise the same: the layers run phase by
+  /// phase, in the kernel's order). For a rebuild followed by a force evaluation.
+  void buildAndAccumulate(const neighbors::CellGrid& grid, const forces::InteractionTable& table, ParticleStore& store,
+                          float skin, const ListOptions& options = {});
   /// Partners of slot i, as slots (finds i's layer and copies: for tests, not hot loops).
   [[nodiscard]] std::vector<std::uint32_t> partners(std::size_t i) const;
   /// Calls fn(i, j) for every listed pair, slot i ascending, each i's partners in list
@@ -87,6 +92,8 @@ class PairList {
 
  private:
   struct Scratch;
+  void build(const neighbors::CellGrid& grid, const forces::InteractionTable& table, const ParticleStore& store,
+             float skin, const ListOptions& options, ParticleStore* forces);
   std::vector<Layer> layers_;
   std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
   std::vector<std::vector<std::uint32_t>> phases_;
