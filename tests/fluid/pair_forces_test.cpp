@@ -43,6 +43,15 @@ std::vector<forces::InteractionTable> threeTables() {
   return out;
 }
 
+// Puts back the copy of the hot loops in use when the test started.
+struct RestoreSimd {
+  Simd was = simdInUse();
+  RestoreSimd() = default;
+  RestoreSimd(const RestoreSimd&) = delete;
+  RestoreSimd& operator=(const RestoreSimd&) = delete;
+  ~RestoreSimd() { useSimd(was); }
+};
+
 void zeroForces(ParticleStore& s) {
   std::fill(s.fx.begin(), s.fx.end(), 0.0f);
   std::fill(s.fy.begin(), s.fy.end(), 0.0f);
@@ -324,10 +333,7 @@ TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
 // list encodings, on every thread count the test runs with. The default copy (AVX2 on
 // such a CPU) also runs every other test here.
 TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
-  struct Restore {
-    Simd was = simdInUse();
-    ~Restore() { useSimd(was); }
-  } restore;
+  const RestoreSimd restore;
   if (!useSimd(Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
   int checked = 0;
   for (const forces::InteractionTable& table : threeTables())
@@ -369,10 +375,7 @@ TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
 // copy lists for slot i exactly the slots j > i within reach, in ascending order, as a
 // brute-force scan finds them with the same float arithmetic.
 TEST(PairList, ListsExactlyThePairsWithinReachOnEveryCopy) {
-  struct Restore {
-    Simd was = simdInUse();
-    ~Restore() { useSimd(was); }
-  } restore;
+  const RestoreSimd restore;
   forces::InteractionTable table(1);
   table.set(0, 0, {forces::Linear{5, 1.0, 0, 5}, 0, 0});
   const float radius = 1.0f, skin = 0.1f;
