@@ -59,6 +59,14 @@ std::atomic<Simd>& simdChoice() {
   return choice;
 }
 
+// The kernel for one layer, in the copy `simd` selects.
+void layerForces(Simd simd, const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
+  if (simd == Simd::Avx2)
+    SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s));
+  else
+    baseline::layerForcesOf(layer, table, s);
+}
+
 }  // namespace
 
 Simd simdInUse() { return simdChoice().load(std::memory_order_relaxed); }
@@ -168,10 +176,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       for (std::size_t p = range.begin(); p != range.end(); ++p) {
         const std::size_t l = phase[p];
         buildOne(l, buf, forwardRanges);
-        if (simd == Simd::Avx2)
-          SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layers_[l], table, *forces));
-        else
-          baseline::layerForcesOf(layers_[l], table, *forces);
+        layerForces(simd, layers_[l], table, *forces);
       }
     });
   }
@@ -184,13 +189,7 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
   // layer of its phase touches; each slot's force is summed in slot and phase order.
   for (const std::vector<std::uint32_t>& phase : list.phases()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
-      for (std::size_t p = range.begin(); p != range.end(); ++p) {
-        const PairList::Layer& layer = layers[phase[p]];
-        if (simd == Simd::Avx2)
-          SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s));
-        else
-          baseline::layerForcesOf(layer, table, s);
-      }
+      for (std::size_t p = range.begin(); p != range.end(); ++p) layerForces(simd, layers[phase[p]], table, s);
     });
   }
 }

@@ -144,29 +144,29 @@ bool Simulation::listIsStale() const {
 
 void Simulation::computeForces() {
   ParticleStore& s = state_.particles;
-  // A rebuild without bodies adds the forces layer by layer as it lists them.
-  bool forcesDone = false;
-  if (listIsStale()) {
+  const bool rebuild = listIsStale();
+  if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the
     // reference positions' memory (they are rewritten below).
     listValid_ = false;
     reserveListWork();
     grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
-    if (model_.bodies.empty()) {
-      forEachSlot(s.size(), [&](std::size_t i) { s.fx[i] = s.fy[i] = s.fz[i] = 0.0f; });
-      list_.buildAndAccumulate(grid_, model_.table, s, skin_, listOptions_);
-      forcesDone = true;
-    } else {
+  }
+  forEachSlot(s.size(), [&](std::size_t i) { s.fx[i] = s.fy[i] = s.fz[i] = 0.0f; });
+  if (rebuild && model_.bodies.empty()) {
+    // Without bodies the rebuild adds the forces layer by layer as it lists them.
+    list_.buildAndAccumulate(grid_, model_.table, s, skin_, listOptions_);
+  } else {
+    if (rebuild) {
       list_.build(grid_, model_.table, s, skin_, listOptions_);
       listRigidPairs();
     }
+    fluid::accumulatePairForces(list_, model_.table, s);
+  }
+  if (rebuild) {
     holdReference(s.px, s.py, s.pz);
     listValid_ = true;
     ++listBuilds_;
-  }
-  if (!forcesDone) {
-    forEachSlot(s.size(), [&](std::size_t i) { s.fx[i] = s.fy[i] = s.fz[i] = 0.0f; });
-    fluid::accumulatePairForces(list_, model_.table, s);
   }
   state_.forcesValid = true;
 }
