@@ -1,5 +1,6 @@
 #include "core/particle_store.h"
 
+#include <algorithm>
 #include <cassert>
 
 #include <tbb/blocked_range.h>
@@ -8,7 +9,8 @@
 namespace softsub {
 
 void ParticleStore::reserve(std::size_t n) {
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz, &fx, &fy, &fz}) a->reserve(n);
+  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz}) a->reserve(n);
+  f.reserve(n);
   material.reserve(n);
   owner.reserve(n);
   id.reserve(n);
@@ -19,7 +21,7 @@ std::size_t ParticleStore::add(float x, float y, float z, float vxi, float vyi, 
   const std::size_t slot = size();
   px.push_back(x); py.push_back(y); pz.push_back(z);
   vx.push_back(vxi); vy.push_back(vyi); vz.push_back(vzi);
-  fx.push_back(0); fy.push_back(0); fz.push_back(0);
+  f.push_back({});
   material.push_back(materialIndex);
   owner.push_back(ownerIndex);
   id.push_back(static_cast<std::uint32_t>(slot));
@@ -50,17 +52,22 @@ void copyBack(std::span<const std::uint32_t> scratch, std::vector<T>& to) {
 void ParticleStore::permute(std::span<const std::uint32_t> order, std::span<std::uint32_t> scratch) {
   const std::size_t n = size();
   assert(order.size() == n && scratch.size() >= n);
-  // Each float array is gathered into a force array, and the two swap their memory:
-  // the force arrays, whose values are dropped, take turns as scratch.
-  std::vector<float>* const spare[3] = {&fx, &fy, &fz};
-  int next = 0;
-  for (auto* a : {&px, &py, &pz, &vx, &vy, &vz}) {
-    gather(a->data(), order, spare[next]->data());
-    a->swap(*spare[next]);
-    next = (next + 1) % 3;
+  // The float arrays pass their memory along a chain: the first is gathered into the
+  // force records' memory (4n floats, whose values are dropped), each next one into the
+  // buffer the previous one left free (the two vectors swap), and the first array's
+  // values are copied back into the last free buffer: one copy instead of six.
+  float* held = reinterpret_cast<float*>(f.data());  // the first array's new values
+  std::vector<float>* const arrays[6] = {&px, &py, &pz, &vx, &vy, &vz};
+  gather(px.data(), order, held);
+  for (int a = 1; a < 6; ++a) {  // arrays[0]'s buffer is free
+    gather(arrays[a]->data(), order, arrays[0]->data());
+    arrays[a]->swap(*arrays[0]);
   }
   tbb::parallel_for(Range(0, n, kBlock), [&](const Range& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) fx[k] = fy[k] = fz[k] = 0.0f;
+    std::copy(held + r.begin(), held + r.end(), px.data() + r.begin());
+  });
+  tbb::parallel_for(Range(0, n, kBlock), [&](const Range& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) f[k] = Force{};
   });
   gather(material.data(), order, scratch.data());
   copyBack(scratch, material);

@@ -215,11 +215,69 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   layer.start.back() = listed;
 }
 
-// The pairs of the slots of one layer (see accumulatePairForces). kVelocity: some pair has
-// a damping or relative-velocity term; without (a conservative model such as the LJ
-// benchmark) the velocities are never loaded. kOneMaterial: a table of one material, whose
-// one entry's constants replace the per-pair gather of entries. All four instances are
-// this one code path.
+// The pair forces of a chunk as records (x, y, z, 0), for pass 5 of the kernel: three
+// arrays in, one record per pair out, 8 (AVX) or 4 (SSE2) pairs per transposition. The
+// arrays are padded to a whole block (the kernel's chunk size is a multiple of 8).
+inline void toRecords(const float* __restrict gx, const float* __restrict gy, const float* __restrict gz,
+                      Force* __restrict out, std::uint32_t n) {
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+  for (std::uint32_t c = 0; c < n; c += 8) {
+    const __m256 x = _mm256_load_ps(gx + c), y = _mm256_load_ps(gy + c), z = _mm256_load_ps(gz + c);
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y);  // pairs 0 1 4 5, 2 3 6 7
+    const __m256 z0 = _mm256_unpacklo_ps(z, zero), z1 = _mm256_unpackhi_ps(z, zero);
+    const __m256 r0 = _mm256_shuffle_ps(xy0, z0, 0x44), r1 = _mm256_shuffle_ps(xy0, z0, 0xEE);  // 0 4, 1 5
+    const __m256 r2 = _mm256_shuffle_ps(xy1, z1, 0x44), r3 = _mm256_shuffle_ps(xy1, z1, 0xEE);  // 2 6, 3 7
+    float* o = &out[c].x;
+    _mm256_store_ps(o, _mm256_permute2f128_ps(r0, r1, 0x20));
+    _mm256_store_ps(o + 8, _mm256_permute2f128_ps(r2, r3, 0x20));
+    _mm256_store_ps(o + 16, _mm256_permute2f128_ps(r0, r1, 0x31));
+    _mm256_store_ps(o + 24, _mm256_permute2f128_ps(r2, r3, 0x31));
+  }
+#elif defined(__SSE2__)
+  for (std::uint32_t c = 0; c < n; c += 4) {
+    const __m128 x = _mm_load_ps(gx + c), y = _mm_load_ps(gy + c), z = _mm_load_ps(gz + c);
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 xy0 = _mm_unpacklo_ps(x, y), xy1 = _mm_unpackhi_ps(x, y);  // pairs 0 1, 2 3
+    const __m128 z0 = _mm_unpacklo_ps(z, zero), z1 = _mm_unpackhi_ps(z, zero);
+    float* o = &out[c].x;
+    _mm_store_ps(o, _mm_movelh_ps(xy0, z0));
+    _mm_store_ps(o + 4, _mm_movehl_ps(z0, xy0));
+    _mm_store_ps(o + 8, _mm_movelh_ps(xy1, z1));
+    _mm_store_ps(o + 12, _mm_movehl_ps(z1, xy1));
+  }
+#else
+  for (std::uint32_t c = 0; c < n; ++c) out[c] = {gx[c], gy[c], gz[c], 0.0f};
+#endif
+}
+
+// A force record in a register, and the two operations pass 5 needs on it: the same
+// IEEE additions and subtractions per component as three scalar ones.
+#if defined(__SSE2__)
+using Quad = __m128;
+inline Quad loadQuad(const Force& f) { return _mm_load_ps(&f.x); }
+inline void storeQuad(Force& f, Quad q) { _mm_store_ps(&f.x, q); }
+inline Quad addQuad(Quad a, Quad b) { return _mm_add_ps(a, b); }
+inline Quad subQuad(Quad a, Quad b) { return _mm_sub_ps(a, b); }
+inline Quad zeroQuad() { return _mm_setzero_ps(); }
+#else
+using Quad = Force;
+inline Quad loadQuad(const Force& f) { return f; }
+inline void storeQuad(Force& f, Quad q) { f = q; }
+inline Quad addQuad(Quad a, Quad b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
+inline Quad subQuad(Quad a, Quad b) { return {a.x - b.x, a.y - b.y, a.z - b.z, a.w - b.w}; }
+inline Quad zeroQuad() { return {}; }
+#endif
+
+// Which velocity terms a table's pairs have. None: a conservative model such as the LJ
+// benchmark, whose velocities are never loaded. Damping: viscosity only (a fluid's own
+// function: the relative-velocity term, 10 of the pair's 25 operations, is skipped).
+// Full: both (a fluid/object pair's default).
+enum class VelocityTerms { None, Damping, Full };
+
+// The pairs of the slots of one layer (see accumulatePairForces). kTerms: the table's
+// velocity terms. kOneMaterial: a table of one material, whose one entry's constants
+// replace the per-pair gather of entries. All six instances are this one code path.
 //
 // The layer's list goes through in chunks of kChunk pairs, whatever slots they belong to
 // (a fluid at rest lists only about 9 partners a slot: chunks per slot would spend their
@@ -232,10 +290,13 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
 // operations per pair as a plain loop over slots and partners, so the sums do not depend
 // on the chunking. Branch-free: a pair listed within the skin but out of range now
 // contributes exactly 0.
-template <bool kVelocity, bool kOneMaterial, class Index>
+template <VelocityTerms kTerms, bool kOneMaterial, class Index>
 void layerPairForces(const PairList::Layer& layer, const Index* __restrict list, std::uint32_t jBase,
                      const forces::InteractionTable& table, ParticleStore& s) {
   constexpr std::uint32_t kChunk = 64;
+  static_assert(kChunk % 8 == 0, "toRecords() works in blocks of 8");
+  constexpr bool kVelocity = kTerms != VelocityTerms::None;
+  constexpr bool kRelative = kTerms == VelocityTerms::Full;
   // One material (one pair entry): its constants, instead of a gather per pair.
   const forces::PairEntry one = table.entries().front();
   const std::size_t m = table.materials();
@@ -248,9 +309,7 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
   const float* __restrict vx = s.vx.data() + jBase;
   const float* __restrict vy = s.vy.data() + jBase;
   const float* __restrict vz = s.vz.data() + jBase;
-  float* __restrict fx = s.fx.data() + jBase;
-  float* __restrict fy = s.fy.data() + jBase;
-  float* __restrict fz = s.fz.data() + jBase;
+  Force* __restrict f = s.f.data() + jBase;
   const std::uint16_t* __restrict mat = s.material.data() + jBase;
   const std::uint32_t* __restrict start = layer.start.data();
   const std::uint32_t base = layer.slots.begin - jBase;
@@ -258,11 +317,13 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
   const std::uint32_t total = start[rows];
   alignas(64) float dxs[kChunk], dys[kChunk], dzs[kChunk], cut2[kChunk], invDr[kChunk], lastK[kChunk];
   alignas(64) float dvxs[kChunk], dvys[kChunk], dvzs[kChunk], damp[kChunk], relv[kChunk];
-  alignas(64) float inv[kChunk], frac[kChunk], value[kChunk], gxs[kChunk], gys[kChunk], gzs[kChunk];
+  alignas(64) float inv[kChunk], frac[kChunk], value[kChunk];
+  alignas(64) float gxs[kChunk] = {}, gys[kChunk] = {}, gzs[kChunk] = {};  // zero past a short chunk
+  alignas(64) Force records[kChunk];
   alignas(64) std::int32_t piece[kChunk], offset[kChunk];
   // The slot whose sum is running (row), and its sum.
   std::uint32_t row = 0;
-  float ax = 0, ay = 0, az = 0;
+  Quad sum = zeroQuad();
   for (std::uint32_t q0 = 0; q0 < total; q0 += kChunk) {
     const std::uint32_t n = std::min(kChunk, total - q0);
     const Index* js = list + q0;
@@ -284,10 +345,8 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
           invDr[c] = e.invDr;
           lastK[c] = static_cast<float>(e.lastPiece);
           offset[c] = static_cast<std::int32_t>(e.offset);
-          if constexpr (kVelocity) {
-            damp[c] = e.damping;
-            relv[c] = e.relativeVelocity;
-          }
+          if constexpr (kVelocity) damp[c] = e.damping;
+          if constexpr (kRelative) relv[c] = e.relativeVelocity;
         }
         if constexpr (kVelocity) {
           dvxs[c] = vx[j] - uxi;
@@ -331,36 +390,44 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
     for (std::uint32_t c = 0; c < n; ++c) {
       const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
       float gx = -value[c] * nx, gy = -value[c] * ny, gz = -value[c] * nz;
-      if constexpr (kVelocity) {
+      if constexpr (kRelative) {
         const float vn = (kOneMaterial ? one.relativeVelocity : relv[c]) * (dvxs[c] * nx + dvys[c] * ny + dvzs[c] * nz);
         gx += vn * nx + damp[c] * dvxs[c];
         gy += vn * ny + damp[c] * dvys[c];
         gz += vn * nz + damp[c] * dvzs[c];
+      } else if constexpr (kVelocity) {
+        gx += damp[c] * dvxs[c];
+        gy += damp[c] * dvys[c];
+        gz += damp[c] * dvzs[c];
       }
       gxs[c] = gx;
       gys[c] = gy;
       gzs[c] = gz;
     }
-    // 5. Newton's third law, slot by slot in partner order; a slot whose partners end in
-    // this chunk gets its sum (slots without partners get their 0 here too).
+    // 5. Newton's third law, slot by slot in partner order, on force records: one
+    // 4-wide addition to the slot's sum and one read-modify-write of the partner's
+    // record per pair. A slot whose partners end in this chunk gets its sum (slots
+    // without partners get their 0 here too).
+    toRecords(gxs, gys, gzs, records, n);
     for (std::uint32_t c = 0; c < n;) {
       const std::uint32_t end = std::min(start[row + 1] - q0, n);
       for (; c < end; ++c) {
-        const std::uint32_t j = js[c];
-        ax += gxs[c]; ay += gys[c]; az += gzs[c];
-        fx[j] -= gxs[c]; fy[j] -= gys[c]; fz[j] -= gzs[c];
+        const Quad g = loadQuad(records[c]);
+        Force& fj = f[js[c]];
+        sum = addQuad(sum, g);
+        storeQuad(fj, subQuad(loadQuad(fj), g));
       }
       if (start[row + 1] - q0 <= n) {
-        fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
-        ax = ay = az = 0;
+        storeQuad(f[base + row], addQuad(loadQuad(f[base + row]), sum));
+        sum = zeroQuad();
         ++row;
       }
     }
   }
   // Slots after the last pair (no partners, or the last row ending on a chunk boundary).
   for (; row < rows; ++row) {
-    fx[base + row] += ax; fy[base + row] += ay; fz[base + row] += az;
-    ax = ay = az = 0;
+    storeQuad(f[base + row], addQuad(loadQuad(f[base + row]), sum));
+    sum = zeroQuad();
   }
 }
 
@@ -368,13 +435,20 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
 template <class Index>
 void layerForces(const PairList::Layer& layer, const Index* list, std::uint32_t jBase,
                  const forces::InteractionTable& table, ParticleStore& s) {
-  const bool velocity = table.hasVelocityTerms();
-  if (table.materials() == 1)
-    velocity ? layerPairForces<true, true>(layer, list, jBase, table, s)
-             : layerPairForces<false, true>(layer, list, jBase, table, s);
-  else
-    velocity ? layerPairForces<true, false>(layer, list, jBase, table, s)
-             : layerPairForces<false, false>(layer, list, jBase, table, s);
+  using enum VelocityTerms;
+  const VelocityTerms terms = table.hasRelativeVelocity() ? Full : table.hasVelocityTerms() ? Damping : None;
+  const bool one = table.materials() == 1;
+  switch (terms) {
+    case None:
+      return one ? layerPairForces<None, true>(layer, list, jBase, table, s)
+                 : layerPairForces<None, false>(layer, list, jBase, table, s);
+    case Damping:
+      return one ? layerPairForces<Damping, true>(layer, list, jBase, table, s)
+                 : layerPairForces<Damping, false>(layer, list, jBase, table, s);
+    case Full:
+      return one ? layerPairForces<Full, true>(layer, list, jBase, table, s)
+                 : layerPairForces<Full, false>(layer, list, jBase, table, s);
+  }
 }
 
 // The kernel for one layer, in its list encoding.

@@ -71,6 +71,8 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   for (const std::size_t k : {a * materials_ + b, b * materials_ + a}) {
     velocityEntries_ -= moving(entries_[k]) ? 1 : 0;
     velocityEntries_ += moving(e) ? 1 : 0;
+    relativeEntries_ -= entries_[k].relativeVelocity != 0 ? 1 : 0;
+    relativeEntries_ += e.relativeVelocity != 0 ? 1 : 0;
     entries_[k] = e;
     if (a == b) break;
   }

@@ -81,6 +81,8 @@ class InteractionTable {
   /// Whether some pair has a damping or relative-velocity term (the kernel loads
   /// velocities only then).
   [[nodiscard]] bool hasVelocityTerms() const { return velocityEntries_ > 0; }
+  /// Whether some pair has a relative-velocity term (without one, the kernel skips it).
+  [[nodiscard]] bool hasRelativeVelocity() const { return relativeEntries_ > 0; }
   /// The longest cutoff of any pair (the grid's cell size is this plus the list skin).
   [[nodiscard]] double maxCutoff() const;
   /// The sampled function of (a, b) evaluated at r, as the kernel does.
@@ -95,6 +97,7 @@ class InteractionTable {
   std::vector<Interaction> described_;
   std::vector<float> samples_;
   std::size_t velocityEntries_ = 0;  // entries with a damping or relative-velocity term
+  std::size_t relativeEntries_ = 0;  // entries with a relative-velocity term
   std::vector<float> rowCutoff2_;
   std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
 };

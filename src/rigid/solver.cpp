@@ -56,7 +56,7 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
   torque_.assign(nb, Vec3::Zero());
   for (const std::uint32_t i : bodySlots_) {
     const std::uint32_t b = s.owner[i] - set.firstEntity;
-    const Vec3 f(s.fx[i], s.fy[i], s.fz[i]);
+    const Vec3 f(s.f[i].x, s.f[i].y, s.f[i].z);
     const Vec3 r = Vec3(s.px[i], s.py[i], s.pz[i]) - states[b].position;
     force_[b] += f;
     torque_[b] += r.cross(f);

@@ -113,8 +113,15 @@ void encodeCheckpoint(const Simulation& sim, std::uint64_t fingerprint, std::str
   put(out, fingerprint);
   put(out, static_cast<std::uint64_t>(n));
   put(out, static_cast<std::uint64_t>(st.bodies.size()));
-  for (const std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz})
+  for (const std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz})
     putArray(out, std::span<const float>(*a));
+  {  // the forces as three arrays, as before they were records in the store
+    std::vector<float> component(n);
+    for (float Force::*c : {&Force::x, &Force::y, &Force::z}) {
+      for (std::size_t i = 0; i < n; ++i) component[i] = s.f[i].*c;
+      putArray(out, std::span<const float>(component));
+    }
+  }
   putArray(out, std::span<const std::uint16_t>(s.material));
   putArray(out, std::span<const std::uint32_t>(s.owner));
   putArray(out, std::span<const std::uint32_t>(s.id));
@@ -144,7 +151,15 @@ void restoreCheckpoint(Simulation& sim, std::string_view bytes, std::uint64_t fi
   const std::uint64_t n = h.info.particles;
   State st;
   ParticleStore& s = st.particles;
-  for (std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) r.getArray(*a, n);
+  for (std::vector<float>* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz}) r.getArray(*a, n);
+  {  // three arrays (checked against the bytes left before anything is sized by n)
+    std::vector<float> fx, fy, fz;
+    r.getArray(fx, n);
+    r.getArray(fy, n);
+    r.getArray(fz, n);
+    s.f.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s.f[i] = {fx[i], fy[i], fz[i], 0.0f};
+  }
   r.getArray(s.material, n);
   r.getArray(s.owner, n);
   r.getArray(s.id, n);

@@ -152,7 +152,7 @@ void Simulation::computeForces() {
     reserveListWork();
     grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
   }
-  forEachSlot(s.size(), [&](std::size_t i) { s.fx[i] = s.fy[i] = s.fz[i] = 0.0f; });
+  forEachSlot(s.size(), [&](std::size_t i) { s.f[i] = Force{}; });
   if (rebuild && model_.bodies.empty()) {
     // Without bodies the rebuild adds the forces layer by layer as it lists them.
     list_.buildAndAccumulate(grid_, model_.table, s, skin_, listOptions_);
@@ -197,9 +197,9 @@ void Simulation::kick(float h) {
   const MaterialInfo* mats = model_.materials.data();
   forEachSlot(s.size(), [&](std::size_t i) {
     const float im = mats[s.material[i]].inverseMass;
-    s.vx[i] += (s.fx[i] * im + gx) * h;
-    s.vy[i] += (s.fy[i] * im + gy) * h;
-    s.vz[i] += (s.fz[i] * im + gz) * h;
+    s.vx[i] += (s.f[i].x * im + gx) * h;
+    s.vy[i] += (s.f[i].y * im + gy) * h;
+    s.vz[i] += (s.f[i].z * im + gz) * h;
   });
 }
 
@@ -334,7 +334,7 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
           speed2 = std::max(speed2, v2);
           if (withForces) {
             const float im = mats[s.material[i]].inverseMass;
-            const float ax = s.fx[i] * im + gx, ay = s.fy[i] * im + gy, az = s.fz[i] * im + gz;
+            const float ax = s.f[i].x * im + gx, ay = s.f[i].y * im + gy, az = s.f[i].z * im + gz;
             const float a2 = (ax * ax + ay * ay + az * az) * inv * inv;
             if (a2 - a2 == 0.0f) accel2 = std::max(accel2, a2);  // unknown forces do not count
           }
@@ -408,8 +408,12 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
     return std::all_of(a.begin(), a.end(), [](float x) { return std::isfinite(x); });
   };
   for (const std::vector<float>* a : std::initializer_list<const std::vector<float>*>{
-           &in.px, &in.py, &in.pz, &in.vx, &in.vy, &in.vz, &in.fx, &in.fy, &in.fz, &refX, &refY, &refZ})
+           &in.px, &in.py, &in.pz, &in.vx, &in.vy, &in.vz, &refX, &refY, &refZ})
     if (!allFinite(*a)) throw std::invalid_argument("the checkpoint holds a value that is not finite");
+  if (!std::all_of(in.f.begin(), in.f.end(), [](const Force& f) {
+        return std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.z) && std::isfinite(f.w);
+      }))
+    throw std::invalid_argument("the checkpoint holds a value that is not finite");
   for (const rigid::BodyState& b : state.bodies)
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angularMomentum.allFinite() ||
         !b.orientation.coeffs().allFinite())
@@ -578,7 +582,8 @@ FrameSnapshot Simulation::snapshot() const {
 std::size_t Simulation::memoryBytes() const {
   const ParticleStore& s = state_.particles;
   std::size_t b = 0;
-  for (auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) b += a->capacity() * 4;
+  for (auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz}) b += a->capacity() * 4;
+  b += s.f.capacity() * sizeof(Force);
   b += s.material.capacity() * 2 + s.owner.capacity() * 4 + s.id.capacity() * 4;
   b += list_.memoryBytes() + listWork_.size();
   b += rigidPairs_.capacity() * sizeof(rigid::SlotPair) + rigid_.bodySlots().size() * 4;

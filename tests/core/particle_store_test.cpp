@@ -16,7 +16,7 @@ ParticleStore numbered(std::size_t n) {
     const float f = static_cast<float>(i);
     s.add(f, 10 + f, 20 + f, 30 + f, 40 + f, 50 + f, static_cast<std::uint16_t>(i % 7),
           static_cast<std::uint32_t>(i % 3));
-    s.fx.back() = 60 + f; s.fy.back() = 70 + f; s.fz.back() = 80 + f;
+    s.f.back() = {60 + f, 70 + f, 80 + f, 0};
   }
   return s;
 }
@@ -41,13 +41,14 @@ TEST(ParticleStore, PermuteMovesEveryArrayTogetherAndZeroesForces) {
     ASSERT_EQ(s.id[k], was);
     ASSERT_EQ(s.px[k], f); ASSERT_EQ(s.py[k], 10 + f); ASSERT_EQ(s.pz[k], 20 + f);
     ASSERT_EQ(s.vx[k], 30 + f); ASSERT_EQ(s.vy[k], 40 + f); ASSERT_EQ(s.vz[k], 50 + f);
-    // The force arrays were the scratch: not carried, zero.
-    ASSERT_EQ(s.fx[k], 0.0f); ASSERT_EQ(s.fy[k], 0.0f); ASSERT_EQ(s.fz[k], 0.0f);
+    // The force records were the scratch: not carried, zero.
+    ASSERT_EQ(s.f[k], Force{});
     ASSERT_EQ(s.material[k], was % 7);
     ASSERT_EQ(s.owner[k], was % 3);
   }
   // Every array keeps its size.
-  for (const auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz, &s.fx, &s.fy, &s.fz}) EXPECT_EQ(a->size(), s.size());
+  for (const auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz}) EXPECT_EQ(a->size(), s.size());
+  EXPECT_EQ(s.f.size(), s.size());
   // A second permutation composes with the first, and a longer scratch is fine.
   std::vector<std::uint32_t> back(s.size()), longer(s.size() + 7);
   for (std::size_t k = 0; k < s.size(); ++k) back[order[k]] = static_cast<std::uint32_t>(k);

@@ -53,9 +53,7 @@ struct RestoreSimd {
 };
 
 void zeroForces(ParticleStore& s) {
-  std::fill(s.fx.begin(), s.fx.end(), 0.0f);
-  std::fill(s.fy.begin(), s.fy.end(), 0.0f);
-  std::fill(s.fz.begin(), s.fz.end(), 0.0f);
+  std::fill(s.f.begin(), s.f.end(), Force{});
 }
 
 // The forces in `s` against referencePairForces: the largest error per particle within
@@ -65,7 +63,7 @@ void expectMatchesReference(const forces::InteractionTable& table, const Particl
   referencePairForces(table, s, rx, ry, rz);
   double worst = 0, scale = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    worst = std::max(worst, std::abs(s.fx[i] - rx[i]) + std::abs(s.fy[i] - ry[i]) + std::abs(s.fz[i] - rz[i]));
+    worst = std::max(worst, std::abs(s.f[i].x - rx[i]) + std::abs(s.f[i].y - ry[i]) + std::abs(s.f[i].z - rz[i]));
     scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
   }
   ASSERT_GT(scale, 1.0) << "the cloud must be dense enough to interact";
@@ -82,9 +80,7 @@ ParticleStore expectSameListsAndForces(const PairList& one, const PairList& othe
   zeroForces(b);
   accumulatePairForces(one, table, a);
   accumulatePairForces(other, table, b);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.fz, b.fz);
+  EXPECT_EQ(a.f, b.f);
   return a;
 }
 
@@ -106,8 +102,8 @@ TEST(PairForces, NewtonsThirdLawSumsToZero) {
   accumulatePairForces(grid, table, s);
   double sx = 0, sy = 0, sz = 0, mag = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    sx += s.fx[i]; sy += s.fy[i]; sz += s.fz[i];
-    mag += std::abs(s.fx[i]) + std::abs(s.fy[i]) + std::abs(s.fz[i]);
+    sx += s.f[i].x; sy += s.f[i].y; sz += s.f[i].z;
+    mag += std::abs(s.f[i].x) + std::abs(s.f[i].y) + std::abs(s.f[i].z);
   }
   EXPECT_LT(std::abs(sx) + std::abs(sy) + std::abs(sz), 1e-5 * mag);
 }
@@ -123,10 +119,10 @@ TEST(PairForces, TwoParticlesFeelTheFunctionAlongTheirLine) {
   accumulatePairForces(g, t, s);
   std::vector<std::uint32_t> slot;
   s.slotsById(slot);
-  EXPECT_NEAR(s.fx[slot[0]], -1.2, 1e-5);
-  EXPECT_NEAR(s.fy[slot[0]], -1.6, 1e-5);
-  EXPECT_NEAR(s.fx[slot[1]], 1.2, 1e-5);
-  EXPECT_NEAR(s.fy[slot[1]], 1.6, 1e-5);
+  EXPECT_NEAR(s.f[slot[0]].x, -1.2, 1e-5);
+  EXPECT_NEAR(s.f[slot[0]].y, -1.6, 1e-5);
+  EXPECT_NEAR(s.f[slot[1]].x, 1.2, 1e-5);
+  EXPECT_NEAR(s.f[slot[1]].y, 1.6, 1e-5);
 }
 
 TEST(PairForces, ViscosityAndRelativeVelocityTerms) {
@@ -141,10 +137,10 @@ TEST(PairForces, ViscosityAndRelativeVelocityTerms) {
   std::vector<std::uint32_t> slot;
   s.slotsById(slot);
   // dv = (-1, 3, 0), n = (1, 0, 0): f0 = 0.5 dv + 2 (dv.n) n = (-0.5 - 2, 1.5, 0)
-  EXPECT_NEAR(s.fx[slot[0]], -2.5, 1e-6);
-  EXPECT_NEAR(s.fy[slot[0]], 1.5, 1e-6);
-  EXPECT_NEAR(s.fx[slot[1]], 2.5, 1e-6);
-  EXPECT_NEAR(s.fy[slot[1]], -1.5, 1e-6);
+  EXPECT_NEAR(s.f[slot[0]].x, -2.5, 1e-6);
+  EXPECT_NEAR(s.f[slot[0]].y, 1.5, 1e-6);
+  EXPECT_NEAR(s.f[slot[1]].x, 2.5, 1e-6);
+  EXPECT_NEAR(s.f[slot[1]].y, -1.5, 1e-6);
 }
 
 TEST(PairForces, CoincidentParticlesStayFinite) {
@@ -158,9 +154,9 @@ TEST(PairForces, CoincidentParticlesStayFinite) {
   g.rebuild(s, 1.5f);
   accumulatePairForces(g, t, s);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_TRUE(std::isfinite(s.fx[i]) && std::isfinite(s.fy[i]) && std::isfinite(s.fz[i]));
+    EXPECT_TRUE(std::isfinite(s.f[i].x) && std::isfinite(s.f[i].y) && std::isfinite(s.f[i].z));
   }
-  EXPECT_FLOAT_EQ(s.fx[0] + s.fx[1], 0.0f);
+  EXPECT_FLOAT_EQ(s.f[0].x + s.f[1].x, 0.0f);
 }
 
 // Rigid bodies: a list that excludes owners from 1 on drops exactly the pairs of two
@@ -259,7 +255,7 @@ TEST(PairList, SixteenAndThirtyTwoBitEntriesGiveTheSameForces) {
 // partner by partner, each slot's sum added after its last partner. Catches any change of
 // summation order (chunking, threads) that the reference tolerance would not.
 void plainLoopForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
-  const bool velocity = table.hasVelocityTerms();
+  const bool velocity = table.hasVelocityTerms(), relative = table.hasRelativeVelocity();
   const float* samples = table.samples().data();
   for (const std::vector<std::uint32_t>& phase : list.phases())
     for (const std::uint32_t l : phase) {
@@ -287,15 +283,21 @@ void plainLoopForces(const PairList& list, const forces::InteractionTable& table
           if (velocity) {
             const float dvx = s.vx[j] - s.vx[i], dvy = s.vy[j] - s.vy[i], dvz = s.vz[j] - s.vz[i];
             const float damp = e.damping * in;
-            const float vn = e.relativeVelocity * (dvx * nx + dvy * ny + dvz * nz);
-            gx += vn * nx + damp * dvx;
-            gy += vn * ny + damp * dvy;
-            gz += vn * nz + damp * dvz;
+            if (relative) {  // a table without the term skips it
+              const float vn = e.relativeVelocity * (dvx * nx + dvy * ny + dvz * nz);
+              gx += vn * nx + damp * dvx;
+              gy += vn * ny + damp * dvy;
+              gz += vn * nz + damp * dvz;
+            } else {
+              gx += damp * dvx;
+              gy += damp * dvy;
+              gz += damp * dvz;
+            }
           }
           ax += gx; ay += gy; az += gz;
-          s.fx[j] -= gx; s.fy[j] -= gy; s.fz[j] -= gz;
+          s.f[j].x -= gx; s.f[j].y -= gy; s.f[j].z -= gz;
         }
-        s.fx[i] += ax; s.fy[i] += ay; s.fz[i] += az;
+        s.f[i].x += ax; s.f[i].y += ay; s.f[i].z += az;
       }
     }
 }
@@ -317,11 +319,9 @@ TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
       plainLoopForces(list, table, b);
 #if defined(__FMA__)
       // With FMA the compiler may fuse differently in the two loops: rounding only.
-      for (std::size_t i = 0; i < s.size(); ++i) ASSERT_NEAR(a.fx[i], b.fx[i], 1e-3f * (1 + std::abs(b.fx[i])));
+      for (std::size_t i = 0; i < s.size(); ++i) ASSERT_NEAR(a.f[i].x, b.f[i].x, 1e-3f * (1 + std::abs(b.f[i].x)));
 #else
-      EXPECT_EQ(a.fx, b.fx);
-      EXPECT_EQ(a.fy, b.fy);
-      EXPECT_EQ(a.fz, b.fz);
+      EXPECT_EQ(a.f, b.f);
 #endif
       ++checked;
     }
@@ -360,9 +360,7 @@ TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
         ASSERT_EQ(wide.pairCount(), base.pairCount());
         ASSERT_GT(base.pairCount(), 1000u);
         for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(wide.partners(i), base.partners(i)) << i;
-        EXPECT_EQ(a.fx, b.fx);
-        EXPECT_EQ(a.fy, b.fy);
-        EXPECT_EQ(a.fz, b.fz);
+        EXPECT_EQ(a.f, b.f);
         ++checked;
       }
   EXPECT_EQ(checked, 12);
@@ -436,14 +434,12 @@ TEST(PairList, BuildAndAccumulateEqualsBuildThenAccumulate) {
       ASSERT_GT(fused.pairCount(), s.size());
       ASSERT_EQ(fused.pairCount(), separate.pairCount());
       for (std::size_t i = 0; i < s.size(); ++i) ASSERT_EQ(fused.partners(i), separate.partners(i)) << i;
-      EXPECT_EQ(a.fx, b.fx);
-      EXPECT_EQ(a.fy, b.fy);
-      EXPECT_EQ(a.fz, b.fz);
+      EXPECT_EQ(a.f, b.f);
       // The fused list serves the next substeps like any other.
       ParticleStore c = s;
       zeroForces(c);
       accumulatePairForces(fused, table, c);
-      EXPECT_EQ(c.fx, a.fx);
+      EXPECT_EQ(c.f, a.f);
       ++checked;
     }
   EXPECT_EQ(checked, 6);
@@ -479,7 +475,7 @@ TEST(PairList, SixteenBitFormHoldsUpToItsLastOffset) {
     wideOptions.narrowSpan = 0;
     wide.build(grid, table, s, 0.0f, wideOptions);
     const ParticleStore a = expectSameListsAndForces(list, wide, table, s);
-    EXPECT_LT(a.fz[0], 0.0f);  // the lower particle is pushed down, away from its partner
+    EXPECT_LT(a.f[0].z, 0.0f);  // the lower particle is pushed down, away from its partner
   }
 }
 

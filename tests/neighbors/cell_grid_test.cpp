@@ -323,7 +323,7 @@ TEST(CellGrid, ParallelSortGivesTheStableOrderOnAnyThreadCount) {
 // the grid then keeps no per-particle memory; reordered forces come back zero.
 TEST(CellGrid, WorkMemoryFromTheCallerGivesTheSameResult) {
   ParticleStore a = cloud(5000, -4, 4, 21);
-  for (std::size_t i = 0; i < a.size(); ++i) a.fx[i] = a.fy[i] = a.fz[i] = 1.0f;
+  for (std::size_t i = 0; i < a.size(); ++i) a.f[i] = {1.0f, 1.0f, 1.0f, 0.0f};
   ParticleStore b = a;
   CellGrid own, lent;
   own.rebuild(a, 0.8f);
@@ -335,13 +335,13 @@ TEST(CellGrid, WorkMemoryFromTheCallerGivesTheSameResult) {
   EXPECT_EQ(a.id, b.id);
   ASSERT_EQ(own.cellCount(), lent.cellCount());
   for (std::size_t c = 0; c < own.cellCount(); ++c) ASSERT_EQ(own.cell(c).end, lent.cell(c).end);
-  for (std::size_t i = 0; i < b.size(); ++i) ASSERT_EQ(b.fx[i] + b.fy[i] + b.fz[i], 0.0f);
+  for (std::size_t i = 0; i < b.size(); ++i) ASSERT_EQ(b.f[i], Force{});
   EXPECT_GE(own.memoryBytes(), lent.memoryBytes() + CellGrid::workBytes(a.size()));
   // Sorted input is left alone, forces included.
-  b.fx[3] = 2.0f;
+  b.f[3].x = 2.0f;
   lent.rebuild(b, 0.8f, std::as_writable_bytes(std::span<std::uint64_t>(work)));
   EXPECT_FALSE(lent.reordered());
-  EXPECT_EQ(b.fx[3], 2.0f);
+  EXPECT_EQ(b.f[3].x, 2.0f);
   // Too small, or misaligned: refused before anything changes.
   const auto bytes = std::as_writable_bytes(std::span<std::uint64_t>(work));
   EXPECT_THROW(lent.rebuild(b, 0.8f, bytes.first(CellGrid::workBytes(b.size()) - 1)), std::invalid_argument);

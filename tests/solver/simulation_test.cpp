@@ -176,7 +176,7 @@ TEST(Simulation, PairListNeverMissesAPairWhileParticlesMove) {
     fluid::referencePairForces(m.table, p, rx, ry, rz);
     double worst = 0, scale = 1;
     for (std::size_t i = 0; i < p.size(); ++i) {
-      worst = std::max(worst, std::abs(p.fx[i] - rx[i]) + std::abs(p.fy[i] - ry[i]) + std::abs(p.fz[i] - rz[i]));
+      worst = std::max(worst, std::abs(p.f[i].x - rx[i]) + std::abs(p.f[i].y - ry[i]) + std::abs(p.f[i].z - rz[i]));
       scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
     }
     ASSERT_LT(worst, 1e-3 * scale) << "step " << k;

@@ -19,7 +19,8 @@ inline std::vector<std::uint8_t> stateBytes(const solver::Simulation& sim, bool 
   const ParticleStore& p = sim.state().particles;
   for (const std::vector<float>* a : {&p.px, &p.py, &p.pz, &p.vx, &p.vy, &p.vz}) append(a->data(), a->size() * 4);
   if (withForces)
-    for (const std::vector<float>* a : {&p.fx, &p.fy, &p.fz}) append(a->data(), a->size() * 4);
+    for (float Force::*c : {&Force::x, &Force::y, &Force::z})  // every x, then y, then z
+      for (const Force& f : p.f) append(&(f.*c), 4);
   append(p.id.data(), p.id.size() * sizeof(std::uint32_t));
   for (const rigid::BodyState& b : sim.state().bodies) {
     const double v[13] = {b.position.x(),        b.position.y(),        b.position.z(),
