@@ -29,6 +29,25 @@ void forEachSlot(std::size_t n, Fn&& fn) {
   });
 }
 
+// The two largest squared displacements (a NaN counts as infinite): maxima are exact, so
+// a parallel reduction gives the same pair whatever the split.
+struct Top2 {
+  float first = 0, second = 0;
+  void add(float d2) {
+    if (!(d2 == d2)) d2 = INFINITY;
+    if (d2 > first) {
+      second = first;
+      first = d2;
+    } else if (d2 > second) {
+      second = d2;
+    }
+  }
+  void join(const Top2& o) {
+    add(o.first);
+    add(o.second);
+  }
+};
+
 }  // namespace
 
 std::size_t Model::particleCount() const {
@@ -109,20 +128,6 @@ double Simulation::time() const {
 bool Simulation::listIsStale() const {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
-  // The two largest squared displacements (a NaN counts as infinite): maxima are exact,
-  // so the parallel reduction gives the same pair whatever the split.
-  struct Top2 {
-    float first = 0, second = 0;
-    void add(float d2) {
-      if (!(d2 == d2)) d2 = INFINITY;
-      if (d2 > first) {
-        second = first;
-        first = d2;
-      } else if (d2 > second) {
-        second = d2;
-      }
-    }
-  };
   const std::size_t n = s.size();
   const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
   const Top2 top = tbb::parallel_reduce(
@@ -135,8 +140,7 @@ bool Simulation::listIsStale() const {
         return t;
       },
       [](Top2 a, const Top2& b) {
-        a.add(b.first);
-        a.add(b.second);
+        a.join(b);
         return a;
       });
   return !(std::sqrt(top.first) + std::sqrt(top.second) < skin_);
@@ -144,7 +148,8 @@ bool Simulation::listIsStale() const {
 
 void Simulation::computeForces() {
   ParticleStore& s = state_.particles;
-  const bool rebuild = listIsStale();
+  const bool rebuild = knownStale_ >= 0 ? knownStale_ == 1 : listIsStale();
+  knownStale_ = -1;
   if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the
     // reference positions' memory (they are rewritten below).
@@ -189,53 +194,45 @@ void Simulation::stepBodies(double dt) {
               materialRadius_, model_.container ? &*model_.container : nullptr, model_.gravity, dt);
 }
 
-// v += (f / m + g) h for every particle.
-void Simulation::kick(float h) {
-  ParticleStore& s = state_.particles;
-  const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
-              gz = static_cast<float>(model_.gravity.z());
-  const MaterialInfo* mats = model_.materials.data();
-  forEachSlot(s.size(), [&](std::size_t i) {
+// What the per-particle stages do to one particle, written once for the passes that run
+// them one after another and for sweep(), which runs them in one.
+struct Simulation::ParticleOps {
+  ParticleStore& s;
+  const MaterialInfo* mats;
+  float gx, gy, gz;
+  const Container* box;  // null: no walls
+  float e, mu;           // the walls' restitution and friction
+  const std::array<float, 3>* wallLo;
+  const std::array<float, 3>* wallHi;
+
+  // v += (f / m + g) h
+  void kick(std::size_t i, float h) const {
     const float im = mats[s.material[i]].inverseMass;
     s.vx[i] += (s.f[i].x * im + gx) * h;
     s.vy[i] += (s.f[i].y * im + gy) * h;
     s.vz[i] += (s.f[i].z * im + gz) * h;
-  });
-}
-
-// x += v dt for every particle.
-void Simulation::drift(float dt) {
-  ParticleStore& s = state_.particles;
-  forEachSlot(s.size(), [&](std::size_t i) {
+  }
+  // x += v dt
+  void drift(std::size_t i, float dt) const {
     s.px[i] += s.vx[i] * dt;
     s.py[i] += s.vy[i] * dt;
     s.pz[i] += s.vz[i] * dt;
-  });
-}
-
-// Container walls: a particle's centre stays one radius inside. On contact the
-// position is put back on the wall; if the particle moves into the wall, its normal
-// velocity v_n is reversed and scaled by the restitution e, and its tangential velocity
-// v_t is reduced by friction * min(|v_t|, (1 + e) |v_n|). At an impact this is the
-// seed's rule (v_t becomes (1 - friction) v_t); in resting or sliding contact the
-// reduction is capped by the normal velocity change, which makes it Coulomb friction
-// (deceleration friction * g on a floor) whatever the substep count. No walls at all
-// without an <Environment>.
-void Simulation::applyWalls() {
-  if (!model_.container) return;
-  const Container& box = *model_.container;
-  ParticleStore& s = state_.particles;
-  const float e = static_cast<float>(box.restitution);
-  const float mu = static_cast<float>(box.friction);
-  float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
-  float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
-  const std::array<float, 3>* wallLo = wallLo_.data();
-  const std::array<float, 3>* wallHi = wallHi_.data();
-  forEachSlot(s.size(), [&](std::size_t i) {
+  }
+  // Container walls: a particle's centre stays one radius inside. On contact the
+  // position is put back on the wall; if the particle moves into the wall, its normal
+  // velocity v_n is reversed and scaled by the restitution e, and its tangential velocity
+  // v_t is reduced by friction * min(|v_t|, (1 + e) |v_n|). At an impact this is the
+  // seed's rule (v_t becomes (1 - friction) v_t); in resting or sliding contact the
+  // reduction is capped by the normal velocity change, which makes it Coulomb friction
+  // (deceleration friction * g on a floor) whatever the substep count. No walls at all
+  // without an <Environment>.
+  void walls(std::size_t i) const {
+    float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
+    float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
     const std::uint16_t m = s.material[i];
     for (int a = 0; a < 3; ++a) {
       const float lo = wallLo[m][a], hi = wallHi[m][a];
-      const bool lid = a != 1 || box.closed;
+      const bool lid = a != 1 || box->closed;
       float& p = pos[a][i];
       float& v = vel[a][i];
       int side = 0;
@@ -253,7 +250,81 @@ void Simulation::applyWalls() {
         t2 *= scale;
       }
     }
-  });
+  }
+};
+
+Simulation::ParticleOps Simulation::particleOps() {
+  const Container* box = model_.container ? &*model_.container : nullptr;
+  return {state_.particles,
+          model_.materials.data(),
+          static_cast<float>(model_.gravity.x()),
+          static_cast<float>(model_.gravity.y()),
+          static_cast<float>(model_.gravity.z()),
+          box,
+          box ? static_cast<float>(box->restitution) : 0.0f,
+          box ? static_cast<float>(box->friction) : 0.0f,
+          wallLo_.data(),
+          wallHi_.data()};
+}
+
+void Simulation::kick(float h) {
+  const ParticleOps ops = particleOps();
+  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.kick(i, h); });
+}
+
+void Simulation::drift(float dt) {
+  const ParticleOps ops = particleOps();
+  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.drift(i, dt); });
+}
+
+// No walls at all without an <Environment>.
+void Simulation::applyWalls() {
+  if (!model_.container) return;
+  const ParticleOps ops = particleOps();
+  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.walls(i); });
+}
+
+void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
+  const ParticleOps ops = particleOps();
+  const ParticleStore& s = state_.particles;
+  const std::size_t n = s.size();
+  const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
+  const bool walls = model_.container.has_value(), displacement = listValid_;
+  const float* invReach = invReach_.data();
+  struct Found {
+    Top2 top;
+    Extremes extremes;
+  };
+  const Found found = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, kBlock), Found{},
+      [&](const tbb::blocked_range<std::size_t>& r, Found f) {
+        float speed2 = 0;
+        bool finite = true;
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          if (explicitEuler) {
+            ops.drift(i, dt);
+            ops.kick(i, h);
+          } else {
+            ops.kick(i, h);
+            ops.drift(i, dt);
+          }
+          if (walls) ops.walls(i);
+          if (displacement) {
+            const float dx = s.px[i] - rx[i], dy = s.py[i] - ry[i], dz = s.pz[i] - rz[i];
+            f.top.add(dx * dx + dy * dy + dz * dz);
+          }
+          if (check) scanSpeed(s, invReach, i, speed2, finite);
+        }
+        f.extremes = joinExtremes(f.extremes, Extremes{std::sqrt(speed2), 0, finite});
+        return f;
+      },
+      [](Found a, const Found& b) {
+        a.top.join(b.top);
+        a.extremes = joinExtremes(a.extremes, b.extremes);
+        return a;
+      });
+  knownStale_ = displacement ? (std::sqrt(found.top.first) + std::sqrt(found.top.second) < skin_ ? 0 : 1) : 1;
+  if (check) checkFinite(&found.extremes);
 }
 
 // The integrators, from kicks (velocity) and drifts (position):
@@ -264,13 +335,26 @@ void Simulation::applyWalls() {
 // Rigid bodies step once per substep whatever the integrator (semi-implicit Euler with
 // impulses: Verlet has no explicit velocity for impulses to change, seed 2.3.4), after
 // the fluid has moved, with the forces of the last evaluation (docs/architecture.md).
+//
+// Without bodies, the stages between two force evaluations run as one sweep() over the
+// particles, with the blow-up check and the next stale-list test (7 passes over the
+// store become 3 a substep); bodies move their particles after the walls, so with
+// bodies the stages run one after another. Both are bitwise the same.
 void Simulation::step() {
   const float dt = static_cast<float>(this->dt());
+  const bool fused = model_.bodies.empty() && !staged_;
   switch (model_.integrator) {
     case Integrator::ExplicitEuler:
-    case Integrator::SymplecticEuler:
+    case Integrator::SymplecticEuler: {
+      const bool explicitEuler = model_.integrator == Integrator::ExplicitEuler;
       computeForces();
-      if (model_.integrator == Integrator::ExplicitEuler) {
+      state_.forcesValid = false;
+      if (fused) {
+        ++substepInFrame_;
+        sweep(dt, dt, explicitEuler, true);
+        return;
+      }
+      if (explicitEuler) {
         drift(dt);  // with v_n
         kick(dt);
       } else {
@@ -279,14 +363,18 @@ void Simulation::step() {
       }
       applyWalls();
       stepBodies(this->dt());
-      state_.forcesValid = false;
       break;
+    }
     case Integrator::VelocityVerlet:
       if (!state_.forcesValid) computeForces();
-      kick(0.5f * dt);
-      drift(dt);
-      applyWalls();
-      stepBodies(this->dt());
+      if (fused) {
+        sweep(0.5f * dt, dt, false, false);
+      } else {
+        kick(0.5f * dt);
+        drift(dt);
+        applyWalls();
+        stepBodies(this->dt());
+      }
       computeForces();
       kick(0.5f * dt);
       break;
@@ -307,41 +395,49 @@ void Simulation::finishFrame() {
   checkFinite();
 }
 
+// checkFinite()'s scan of slot i: `finite` false if its position or velocity is not
+// finite, `speed2` the largest squared speed so far in reach units.
+void Simulation::scanSpeed(const ParticleStore& s, const float* invReach, std::size_t i, float& speed2, bool& finite) {
+  const float inv = invReach[s.material[i]];
+  // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
+  finite &= (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
+  finite &= (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
+  // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
+  const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
+  speed2 = std::max(speed2, v2);
+}
+
+Simulation::Extremes Simulation::joinExtremes(Extremes a, const Extremes& b) {
+  a.speed = std::max(a.speed, b.speed);
+  a.acceleration = std::max(a.acceleration, b.acceleration);
+  a.finite = a.finite && b.finite;
+  return a;
+}
+
 Simulation::Extremes Simulation::scanParticles(bool withForces) const {
   const ParticleStore& s = state_.particles;
   const float gx = static_cast<float>(model_.gravity.x()), gy = static_cast<float>(model_.gravity.y()),
               gz = static_cast<float>(model_.gravity.z());
   const MaterialInfo* mats = model_.materials.data();
   const float* invReach = invReach_.data();
-  auto join = [](Extremes a, const Extremes& b) {
-    a.speed = std::max(a.speed, b.speed);
-    a.acceleration = std::max(a.acceleration, b.acceleration);
-    a.finite = a.finite && b.finite;
-    return a;
-  };
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, s.size(), kBlock), Extremes{},
       [&](const tbb::blocked_range<std::size_t>& r, Extremes e) {
         float speed2 = 0, accel2 = 0;  // in reach units
         bool finite = true;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const float inv = invReach[s.material[i]];
-          // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
-          finite &= (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
-          finite &= (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
-          // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
-          const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
-          speed2 = std::max(speed2, v2);
+          scanSpeed(s, invReach, i, speed2, finite);
           if (withForces) {
+            const float inv = invReach[s.material[i]];
             const float im = mats[s.material[i]].inverseMass;
             const float ax = s.f[i].x * im + gx, ay = s.f[i].y * im + gy, az = s.f[i].z * im + gz;
             const float a2 = (ax * ax + ay * ay + az * az) * inv * inv;
             if (a2 - a2 == 0.0f) accel2 = std::max(accel2, a2);  // unknown forces do not count
           }
         }
-        return join(e, Extremes{std::sqrt(speed2), std::sqrt(accel2), finite});
+        return joinExtremes(e, Extremes{std::sqrt(speed2), std::sqrt(accel2), finite});
       },
-      join);
+      joinExtremes);
 }
 
 int Simulation::chooseSubsteps() const {
@@ -427,11 +523,13 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
   const auto giveBack = [&] {
     state_ = std::move(previous);
     listValid_ = false;
+    knownStale_ = -1;
     if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
   };
   substepInFrame_ = 0;
   substeps_ = std::max(1, model_.substeps);
   listValid_ = false;
+  knownStale_ = -1;
   if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
   if (refX.empty()) return;
   ParticleStore& s = state_.particles;
@@ -466,13 +564,18 @@ std::string Simulation::entityName(std::uint32_t owner) const {
 }
 
 void Simulation::checkFinite() const {
+  checkFinite(nullptr);
+}
+
+// The check with the particles' scan done (sweep()) or, when `scanned` is null, to do.
+void Simulation::checkFinite(const Extremes* scanned) const {
   bool ok = true;
   const double limit = model_.maxTravelPerSubstep * model_.framesPerSecond * substeps_;  // reach per second
   for (const rigid::BodyState& st : state_.bodies)
     ok = ok && st.position.allFinite() && st.velocity.allFinite() && st.angularMomentum.allFinite() &&
          st.orientation.coeffs().allFinite();
   if (ok) {
-    const Extremes e = scanParticles(false);
+    const Extremes e = scanned != nullptr ? *scanned : scanParticles(false);
     ok = e.finite && !(limit > 0 && e.speed > limit);
   }
   if (!ok) reportBlowUp();

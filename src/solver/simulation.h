@@ -86,6 +86,10 @@ class Simulation {
   /// velocity is not finite or whose speed is beyond model.maxTravelPerSubstep.
   void checkFinite() const;
 
+  /// Runs the per-particle stages one pass each, as a scene with bodies does, instead of
+  /// one sweep (tests: the two are bitwise the same).
+  void useStagedPasses(bool staged) { staged_ = staged; }
+
   /// The rigid-body solver (contacts of the last substep, tests).
   [[nodiscard]] const rigid::RigidSolver& rigidSolver() const { return rigid_; }
 
@@ -95,6 +99,14 @@ class Simulation {
   void kick(float h);    // v += (f/m + g) h
   void drift(float dt);  // x += v dt
   void applyWalls();
+  // kick(h) then drift(dt) (explicitEuler: drift, then kick), then applyWalls(), in one
+  // pass over the particles, which also finds the two largest displacements since the
+  // list was built (kept for the next computeForces()) and, with `check`, runs
+  // checkFinite()'s scan. Bitwise the same as the stages one after another. Scenes
+  // without bodies only (bodies move their particles after the walls).
+  void sweep(float h, float dt, bool explicitEuler, bool check);
+  struct ParticleOps;
+  [[nodiscard]] ParticleOps particleOps();
   void stepBodies(double dt);
   void listRigidPairs();
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
@@ -110,6 +122,9 @@ class Simulation {
     bool finite = true;
   };
   [[nodiscard]] Extremes scanParticles(bool withForces) const;
+  void checkFinite(const Extremes* scanned) const;
+  static void scanSpeed(const ParticleStore& s, const float* invReach, std::size_t i, float& speed2, bool& finite);
+  static Extremes joinExtremes(Extremes a, const Extremes& b);
   // listWork_ large enough for a grid rebuild and for the reference positions.
   void reserveListWork();
   // Copies the reference positions into listWork_.
@@ -127,6 +142,11 @@ class Simulation {
   float cellSize_ = 1;  // longest cutoff
   float skin_ = 0;      // pair-list margin beyond the cutoff
   bool listValid_ = false;
+  // The stale-list test's answer for the positions as they are, found by sweep(): -1
+  // unknown (computeForces() then scans), 0 fresh, 1 stale. Whatever moves particles
+  // other than sweep() (stepBodies(), restore(), a rebuild) leaves it -1.
+  int knownStale_ = -1;
+  bool staged_ = false;  // useStagedPasses()
   std::int64_t listBuilds_ = 0;
   // Positions when the list was built (valid with listValid_), in listWork_, which the
   // grid uses as its work memory during a rebuild (core/work_buffer.h).
