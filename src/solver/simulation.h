@@ -29,6 +29,11 @@ class Simulation {
   /// check (checkSubstep). Throws BlowUpError naming the frame, the substep, the fluid
   /// or object, the particle id, the quantity and its value.
   void step();
+  /// What the first substep does before it moves anything, done now: velocity Verlet's
+  /// first force evaluation (with the grid and the pair list). Nothing for the Euler
+  /// schemes, whose every substep starts with its forces. For a benchmark that times the
+  /// steps alone, as LAMMPS's "Loop time" leaves out its setup.
+  void prepare();
   /// A whole frame: chooses its substep count (chooseSubsteps, when the model is
   /// adaptive), steps them, then frame += 1. BlowUpError as step().
   void advanceFrame();
