@@ -1,6 +1,7 @@
 #include "solver/simulation.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -95,6 +96,8 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
   }
   invReach_.resize(nm);
   for (std::size_t a = 0; a < nm; ++a) invReach_[a] = 1.0f / reach_[a];
+  uniformReach_ = !invReach_.empty() && std::all_of(invReach_.begin(), invReach_.end(),
+                                                    [&](float r) { return r == invReach_.front(); });
   substeps_ = std::max(1, model_.substeps);
   // Where each material's centres meet the container walls (one radius inside; a box
   // narrower than a particle holds it in the middle), once rather than per particle.
@@ -194,6 +197,33 @@ void Simulation::stepBodies(double dt) {
               materialRadius_, model_.container ? &*model_.container : nullptr, model_.gravity, dt);
 }
 
+// checkFinite()'s scan of slots [b, e): `finite` false if a position or velocity there is
+// not finite, `speed2` raised to the largest squared speed in reach units. Written so
+// that it vectorises: the test is an integer "and", the maximum an integer one (squared
+// speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; a NaN,
+// which only a non-finite velocity gives, counts as 0), and a reach that all materials
+// share is read once instead of per particle.
+void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const {
+  std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
+  const auto scan = [&](std::size_t i, float inv) {
+    // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
+    const float p = (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]);
+    const float v = (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]);
+    ok &= static_cast<std::uint32_t>(p == 0.0f) & static_cast<std::uint32_t>(v == 0.0f);
+    // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
+    const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
+    top = std::max(top, v2 == v2 ? std::bit_cast<std::uint32_t>(v2) : 0u);
+  };
+  if (uniformReach_) {
+    const float inv = invReach_.front();
+    for (std::size_t i = b; i != e; ++i) scan(i, inv);
+  } else {
+    for (std::size_t i = b; i != e; ++i) scan(i, invReach_[s.material[i]]);
+  }
+  speed2 = std::bit_cast<float>(top);
+  finite = finite && ok != 0;
+}
+
 // What the per-particle stages do to one particle, written once for the passes that run
 // them one after another and for sweep(), which runs them in one.
 struct Simulation::ParticleOps {
@@ -290,7 +320,6 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
   const std::size_t n = s.size();
   const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
   const bool walls = model_.container.has_value(), displacement = listValid_;
-  const float* invReach = invReach_.data();
   struct Found {
     Top2 top;
     Extremes extremes;
@@ -298,23 +327,26 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
   const Found found = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n, kBlock), Found{},
       [&](const tbb::blocked_range<std::size_t>& r, Found f) {
-        float speed2 = 0;
-        bool finite = true;
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          if (explicitEuler) {
-            ops.drift(i, dt);
-            ops.kick(i, h);
-          } else {
-            ops.kick(i, h);
-            ops.drift(i, dt);
-          }
-          if (walls) ops.walls(i);
-          if (displacement) {
+        // Stage by stage over the block (at most kBlock slots, in cache from the first
+        // stage on), so that the kick and the drift stay vectorised loops.
+        const std::size_t b = r.begin(), e = r.end();
+        if (explicitEuler) {
+          for (std::size_t i = b; i != e; ++i) ops.drift(i, dt);
+          for (std::size_t i = b; i != e; ++i) ops.kick(i, h);
+        } else {
+          for (std::size_t i = b; i != e; ++i) ops.kick(i, h);
+          for (std::size_t i = b; i != e; ++i) ops.drift(i, dt);
+        }
+        if (walls)
+          for (std::size_t i = b; i != e; ++i) ops.walls(i);
+        if (displacement)
+          for (std::size_t i = b; i != e; ++i) {
             const float dx = s.px[i] - rx[i], dy = s.py[i] - ry[i], dz = s.pz[i] - rz[i];
             f.top.add(dx * dx + dy * dy + dz * dz);
           }
-          if (check) scanSpeed(s, invReach, i, speed2, finite);
-        }
+        float speed2 = 0;
+        bool finite = true;
+        if (check) scanSpeeds(s, b, e, speed2, finite);
         f.extremes = joinExtremes(f.extremes, Extremes{std::sqrt(speed2), 0, finite});
         return f;
       },
@@ -399,18 +431,6 @@ void Simulation::finishFrame() {
   checkFinite();
 }
 
-// checkFinite()'s scan of slot i: `finite` false if its position or velocity is not
-// finite, `speed2` the largest squared speed so far in reach units.
-void Simulation::scanSpeed(const ParticleStore& s, const float* invReach, std::size_t i, float& speed2, bool& finite) {
-  const float inv = invReach[s.material[i]];
-  // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
-  finite &= (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]) == 0.0f;
-  finite &= (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]) == 0.0f;
-  // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
-  const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
-  speed2 = std::max(speed2, v2);
-}
-
 Simulation::Extremes Simulation::joinExtremes(Extremes a, const Extremes& b) {
   a.speed = std::max(a.speed, b.speed);
   a.acceleration = std::max(a.acceleration, b.acceleration);
@@ -429,16 +449,15 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
       [&](const tbb::blocked_range<std::size_t>& r, Extremes e) {
         float speed2 = 0, accel2 = 0;  // in reach units
         bool finite = true;
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          scanSpeed(s, invReach, i, speed2, finite);
-          if (withForces) {
+        scanSpeeds(s, r.begin(), r.end(), speed2, finite);
+        if (withForces)
+          for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const float inv = invReach[s.material[i]];
             const float im = mats[s.material[i]].inverseMass;
             const float ax = s.f[i].x * im + gx, ay = s.f[i].y * im + gy, az = s.f[i].z * im + gz;
             const float a2 = (ax * ax + ay * ay + az * az) * inv * inv;
             if (a2 - a2 == 0.0f) accel2 = std::max(accel2, a2);  // unknown forces do not count
           }
-        }
         return joinExtremes(e, Extremes{std::sqrt(speed2), std::sqrt(accel2), finite});
       },
       joinExtremes);

@@ -128,7 +128,7 @@ class Simulation {
   };
   [[nodiscard]] Extremes scanParticles(bool withForces) const;
   void checkFinite(const Extremes* scanned) const;
-  static void scanSpeed(const ParticleStore& s, const float* invReach, std::size_t i, float& speed2, bool& finite);
+  void scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const;
   static Extremes joinExtremes(Extremes a, const Extremes& b);
   // listWork_ large enough for a grid rebuild and for the reference positions.
   void reserveListWork();
@@ -144,6 +144,7 @@ class Simulation {
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
   std::vector<float> invReach_;  // 1 / reach_
+  bool uniformReach_ = false;    // every material has the same reach_
   float cellSize_ = 1;  // longest cutoff
   float skin_ = 0;      // pair-list margin beyond the cutoff
   bool listValid_ = false;
