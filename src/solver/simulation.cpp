@@ -200,25 +200,42 @@ void Simulation::stepBodies(double dt) {
 // checkFinite()'s scan of slots [b, e): `finite` false if a position or velocity there is
 // not finite, `speed2` raised to the largest squared speed in reach units. Written so
 // that it vectorises: the test is an integer "and", the maximum an integer one (squared
-// speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; a NaN,
-// which only a non-finite velocity gives, counts as 0), and a reach that all materials
-// share is read once instead of per particle.
-void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const {
-  std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
-  const auto scan = [&](std::size_t i, float inv) {
+// speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; only a
+// non-finite velocity gives a NaN, which may then come out as the speed, with `finite`
+// false), and a reach that all materials share is read once instead of per particle.
+namespace {
+// scanSpeeds' loop; inv(i) is slot i's 1 / reach.
+template <class Inv>
+void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv, std::uint32_t& okOut,
+               std::uint32_t& topOut) {
+  const float *px = s.px.data(), *py = s.py.data(), *pz = s.pz.data();
+  const float *vx = s.vx.data(), *vy = s.vy.data(), *vz = s.vz.data();
+  std::uint32_t ok = 1, top = topOut;
+  for (std::size_t i = b; i != e; ++i) {
     // x - x is 0 for a finite x and NaN otherwise (no short circuit: no branch).
-    const float p = (s.px[i] - s.px[i]) + (s.py[i] - s.py[i]) + (s.pz[i] - s.pz[i]);
-    const float v = (s.vx[i] - s.vx[i]) + (s.vy[i] - s.vy[i]) + (s.vz[i] - s.vz[i]);
+    const float p = (px[i] - px[i]) + (py[i] - py[i]) + (pz[i] - pz[i]);
+    const float v = (vx[i] - vx[i]) + (vy[i] - vy[i]) + (vz[i] - vz[i]);
     ok &= static_cast<std::uint32_t>(p == 0.0f) & static_cast<std::uint32_t>(v == 0.0f);
     // May overflow to infinity for a finite but absurd speed: then it is beyond any limit.
-    const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
-    top = std::max(top, v2 == v2 ? std::bit_cast<std::uint32_t>(v2) : 0u);
-  };
+    const float r = inv(i);
+    const float v2 = (vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i]) * r * r;
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(v2);
+    top = top > bits ? top : bits;
+  }
+  okOut = ok;
+  topOut = top;
+}
+}  // namespace
+
+void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const {
+  std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
   if (uniformReach_) {
-    const float inv = invReach_.front();
-    for (std::size_t i = b; i != e; ++i) scan(i, inv);
+    const float r = invReach_.front();
+    scanRange(s, b, e, [r](std::size_t) { return r; }, ok, top);
   } else {
-    for (std::size_t i = b; i != e; ++i) scan(i, invReach_[s.material[i]]);
+    const float* invReach = invReach_.data();
+    const std::uint16_t* material = s.material.data();
+    scanRange(s, b, e, [=](std::size_t i) { return invReach[material[i]]; }, ok, top);
   }
   speed2 = std::bit_cast<float>(top);
   finite = finite && ok != 0;
