@@ -531,12 +531,13 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
   // Each particle keeps its id's owner and material (what the model gave it), and every
   // value is finite: a checkpoint is trusted no further than a scene file.
   const ParticleStore& now = state_.particles;
-  now.slotsById(slotOfId_);
+  std::vector<std::uint32_t> slotOfId;
+  now.slotsById(slotOfId);
   const ParticleStore& in = state.particles;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t id = in.id[i];
     if (id >= n) throw std::invalid_argument("the checkpoint has an out-of-range particle id");
-    const std::uint32_t slot = slotOfId_[id];
+    const std::uint32_t slot = slotOfId[id];
     if (in.owner[i] != now.owner[slot] || in.material[i] != now.material[slot])
       throw std::invalid_argument("the checkpoint's particles do not belong to this scene's fluids and objects");
   }
@@ -673,9 +674,11 @@ void Simulation::reportBlowUp() const {
       when, entityName(s.owner[worst]), s.id[worst], problem));
 }
 
+// Each fluid's particles in id order: its ids are consecutive from firstId, so a pass over
+// the slots puts every particle in its place (no id-to-slot table kept between frames: 4
+// bytes a particle).
 void Simulation::snapshot(FrameSnapshot& out) const {
   const ParticleStore& s = state_.particles;
-  s.slotsById(slotOfId_);
   out.frame = state_.frame;
   out.time = time();
   out.framesPerSecond = model_.framesPerSecond;
@@ -689,13 +692,15 @@ void Simulation::snapshot(FrameSnapshot& out) const {
     fs.ids.resize(info.count);
     fs.positions.resize(3 * std::size_t{info.count});
     fs.velocities.resize(3 * std::size_t{info.count});
-    for (std::uint32_t k = 0; k < info.count; ++k) {
-      const std::uint32_t id = info.firstId + k;
-      const std::uint32_t slot = slotOfId_[id];
-      fs.ids[k] = id;
-      fs.positions[3 * k] = s.px[slot]; fs.positions[3 * k + 1] = s.py[slot]; fs.positions[3 * k + 2] = s.pz[slot];
-      fs.velocities[3 * k] = s.vx[slot]; fs.velocities[3 * k + 1] = s.vy[slot]; fs.velocities[3 * k + 2] = s.vz[slot];
-    }
+    for (std::uint32_t k = 0; k < info.count; ++k) fs.ids[k] = info.firstId + k;
+  }
+  for (std::size_t slot = 0; slot < s.size(); ++slot) {
+    const std::uint32_t owner = s.owner[slot];
+    if (owner >= model_.fluids.size()) continue;  // a body's particle
+    FluidSnapshot& fs = out.fluids[owner];
+    const std::size_t k = s.id[slot] - model_.fluids[owner].firstId;
+    fs.positions[3 * k] = s.px[slot]; fs.positions[3 * k + 1] = s.py[slot]; fs.positions[3 * k + 2] = s.pz[slot];
+    fs.velocities[3 * k] = s.vx[slot]; fs.velocities[3 * k + 1] = s.vy[slot]; fs.velocities[3 * k + 2] = s.vz[slot];
   }
   const std::vector<rigid::BodyInfo>& bodies = model_.bodies.bodies;
   out.objects.resize(bodies.size());
@@ -731,7 +736,7 @@ std::size_t Simulation::memoryBytes() const {
   b += list_.memoryBytes() + listWork_.size();
   b += rigidPairs_.capacity() * sizeof(rigid::SlotPair) + rigid_.bodySlots().size() * 4;
   b += model_.bodies.particleCount() * 12;  // body-space offsets
-  return b + grid_.memoryBytes() + slotOfId_.capacity() * 4;
+  return b + grid_.memoryBytes();
 }
 
 }  // namespace softsub::solver

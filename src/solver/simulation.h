@@ -158,7 +158,6 @@ class Simulation {
   // grid uses as its work memory during a rebuild (core/work_buffer.h).
   WorkBuffer listWork_;
   const float* ref_ = nullptr;  // x of every slot, then y, then z
-  mutable std::vector<std::uint32_t> slotOfId_;
   // Rigid bodies.
   rigid::RigidSolver rigid_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
