@@ -197,12 +197,6 @@ void Simulation::stepBodies(double dt) {
               materialRadius_, model_.container ? &*model_.container : nullptr, model_.gravity, dt);
 }
 
-// checkFinite()'s scan of slots [b, e): `finite` false if a position or velocity there is
-// not finite, `speed2` raised to the largest squared speed in reach units. Written so
-// that it vectorises: the test is an integer "and", the maximum an integer one (squared
-// speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; only a
-// non-finite velocity gives a NaN, which may then come out as the speed, with `finite`
-// false), and a reach that all materials share is read once instead of per particle.
 namespace {
 // scanSpeeds' loop; inv(i) is slot i's 1 / reach.
 template <class Inv>
@@ -227,6 +221,12 @@ void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv, st
 }
 }  // namespace
 
+// checkFinite()'s scan of slots [b, e): `finite` false if a position or velocity there is
+// not finite, `speed2` raised to the largest squared speed in reach units. Written so
+// that it vectorises: the test is an integer "and", the maximum an integer one (squared
+// speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; only a
+// non-finite velocity gives a NaN, which may then come out as the speed, with `finite`
+// false), and a reach that all materials share is read once instead of per particle.
 void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const {
   std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
   if (uniformReach_) {
