@@ -51,7 +51,7 @@ void copyBack(std::span<const std::uint32_t> scratch, std::vector<T>& to) {
 
 void ParticleStore::permute(std::span<const std::uint32_t> order, std::span<std::uint32_t> scratch) {
   const std::size_t n = size();
-  assert(order.size() == n && scratch.size() >= n);
+  assert(order.size() == n && scratch.size() >= n && f.size() == n);
   // The float arrays pass their memory along a chain: the first is gathered into the
   // force records' memory (4n floats, whose values are dropped), each next one into the
   // buffer the previous one left free (the two vectors swap), and the first array's

@@ -318,7 +318,9 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
   alignas(64) float dxs[kChunk], dys[kChunk], dzs[kChunk], cut2[kChunk], invDr[kChunk], lastK[kChunk];
   alignas(64) float dvxs[kChunk], dvys[kChunk], dvzs[kChunk], damp[kChunk], relv[kChunk];
   alignas(64) float inv[kChunk], frac[kChunk], value[kChunk];
-  alignas(64) float gxs[kChunk] = {}, gys[kChunk] = {}, gzs[kChunk] = {};  // zero past a short chunk
+  // Initialised once: toRecords() reads a short chunk's block up to its end, and those
+  // entries (left from an earlier chunk, or 0) go to records that pass 5 never reads.
+  alignas(64) float gxs[kChunk] = {}, gys[kChunk] = {}, gzs[kChunk] = {};
   alignas(64) Force records[kChunk];
   alignas(64) std::int32_t piece[kChunk], offset[kChunk];
   // The slot whose sum is running (row), and its sum.

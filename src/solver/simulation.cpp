@@ -95,7 +95,9 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     reach_[a] = r > 0 && std::isfinite(r) ? r : cellSize_;
   }
   invReach_.resize(nm);
-  for (std::size_t a = 0; a < nm; ++a) invReach_[a] = 1.0f / reach_[a];
+  // At most FLT_MAX, so that a particle at rest scans as speed 0 even for an absurdly
+  // small reach (0 * inf would be NaN).
+  for (std::size_t a = 0; a < nm; ++a) invReach_[a] = std::min(1.0f / reach_[a], std::numeric_limits<float>::max());
   uniformReach_ = !invReach_.empty() && std::all_of(invReach_.begin(), invReach_.end(),
                                                     [&](float r) { return r == invReach_.front(); });
   substeps_ = std::max(1, model_.substeps);

@@ -32,7 +32,9 @@ class Simulation {
   /// What the first substep does before it moves anything, done now: velocity Verlet's
   /// first force evaluation (with the grid and the pair list). Nothing for the Euler
   /// schemes, whose every substep starts with its forces. For a benchmark that times the
-  /// steps alone, as LAMMPS's "Loop time" leaves out its setup.
+  /// steps alone, as LAMMPS's "Loop time" leaves out its setup. The substeps that follow
+  /// are the same; only adaptive substeps (Model::adaptiveSubsteps) may choose the first
+  /// frame's count differently, as they then see these forces instead of none.
   void prepare();
   /// A whole frame: chooses its substep count (chooseSubsteps, when the model is
   /// adaptive), steps them, then frame += 1. BlowUpError as step().
