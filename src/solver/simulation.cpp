@@ -47,6 +47,15 @@ struct Top2 {
     add(o.first);
     add(o.second);
   }
+  // Adds the displacements of slots [b, e) from the reference positions (x of every
+  // slot, then y, then z).
+  void addDisplacements(const ParticleStore& s, const float* ref, std::size_t b, std::size_t e) {
+    const std::size_t n = s.size();
+    for (std::size_t i = b; i != e; ++i) {
+      const float dx = s.px[i] - ref[i], dy = s.py[i] - ref[n + i], dz = s.pz[i] - ref[2 * n + i];
+      add(dx * dx + dy * dy + dz * dz);
+    }
+  }
 };
 
 }  // namespace
@@ -133,15 +142,10 @@ double Simulation::time() const {
 bool Simulation::listIsStale() const {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
-  const std::size_t n = s.size();
-  const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
   const Top2 top = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, s.size(), kBlock), Top2{},
       [&](const tbb::blocked_range<std::size_t>& r, Top2 t) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const float dx = s.px[i] - rx[i], dy = s.py[i] - ry[i], dz = s.pz[i] - rz[i];
-          t.add(dx * dx + dy * dy + dz * dz);
-        }
+        t.addDisplacements(s, ref_, r.begin(), r.end());
         return t;
       },
       [](Top2 a, const Top2& b) {
@@ -337,7 +341,6 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
   const ParticleOps ops = particleOps();
   const ParticleStore& s = state_.particles;
   const std::size_t n = s.size();
-  const float *rx = ref_, *ry = ref_ + n, *rz = ref_ + 2 * n;
   const bool walls = model_.container.has_value(), displacement = listValid_;
   struct Found {
     Top2 top;
@@ -358,11 +361,7 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
         }
         if (walls)
           for (std::size_t i = b; i != e; ++i) ops.walls(i);
-        if (displacement)
-          for (std::size_t i = b; i != e; ++i) {
-            const float dx = s.px[i] - rx[i], dy = s.py[i] - ry[i], dz = s.pz[i] - rz[i];
-            f.top.add(dx * dx + dy * dy + dz * dz);
-          }
+        if (displacement) f.top.addDisplacements(s, ref_, b, e);
         float speed2 = 0;
         bool finite = true;
         if (check) scanSpeeds(s, b, e, speed2, finite);
