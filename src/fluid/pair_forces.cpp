@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -84,6 +85,7 @@ struct PairList::Scratch {
   struct Buffers {
     std::vector<float> x, y, z;
     std::vector<std::uint32_t> entry, owner;
+    std::vector<std::uint32_t> kept;  // one particle's partners when the list is nearly full
     std::vector<neighbors::SlotRange> ranges;  // the forward ranges of one layer's cells
     std::vector<std::uint32_t> rangeStart;     // each cell's first in ranges
   };
@@ -116,7 +118,7 @@ std::size_t PairList::memoryBytes() const {
   for (const Layer& l : layers_) b += (l.start.capacity() + l.far.capacity()) * 4 + l.near.capacity() * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.entry.capacity() +
-          s.owner.capacity() + s.rangeStart.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
+          s.owner.capacity() + s.kept.capacity() + s.rangeStart.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
   return b;
 }
 

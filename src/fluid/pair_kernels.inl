@@ -135,6 +135,21 @@ void grow(V& list, std::size_t needed) {
   list.resize(target);
 }
 
+// Gives back the capacity of a list that has shrunk to under four fifths of it, keeping
+// an eighth for growth. A layer's content changes as the fluid moves (a layer that once
+// held the pool's densest part may later hold spray), and without this each layer would
+// keep the largest list it ever had: in the seed scene the sum of those maxima was half
+// as much again as the lists in use. Costs one allocation and copy of the layer's list
+// at the rebuilds where it happens.
+template <class V>
+void trim(V& list, std::size_t used) {
+  if (list.capacity() <= used + used / 4 + kFilterBlock) return;
+  V kept;
+  kept.reserve(used + used / 8);
+  kept.assign(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(used));
+  list.swap(kept);
+}
+
 // One layer of PairList::build: its partners, written into its list (see build()).
 // Scratch: PairList's per-thread buffers (deduced: the type is private to PairList).
 template <class Scratch>
@@ -178,7 +193,7 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
       for (const neighbors::SlotRange& r : forward) len += r.end - r.begin;
       if (buf.x.size() < len + kFilterBlock) {  // filter() reads up to a block past len
         for (auto* v : {&buf.x, &buf.y, &buf.z}) v->resize(len + kFilterBlock);
-        for (auto* v : {&buf.entry, &buf.owner}) v->resize(len + kFilterBlock);
+        for (auto* v : {&buf.entry, &buf.owner, &buf.kept}) v->resize(len + kFilterBlock);
       }
       std::uint32_t k = 0;
       auto append = [&](std::uint32_t b, std::uint32_t e) {
@@ -194,15 +209,29 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
       for (std::uint32_t i = own.begin; i < own.end; ++i) {
         layer.start[i - layer.slots.begin] = listed;
         const std::uint32_t from = i - own.begin + 1;
-        if (out.size() < listed + len) grow(out, listed + len);
         const float cut2 = rowCut2[s.material[i]];
+        const auto filterInto = [&](auto* to, std::uint32_t room) {
+          return exclusive && s.owner[i] >= options.exclusiveOwnersFrom
+                     ? filter<true>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], to, room)
+                     : filter<false>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, 0, to, room);
+        };
         const auto room = static_cast<std::uint32_t>(out.size()) - listed;
-        listed += exclusive && s.owner[i] >= options.exclusiveOwnersFrom
-                      ? filter<true>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, s.owner[i], out.data() + listed, room)
-                      : filter<false>(b, from, len, s.px[i], s.py[i], s.pz[i], cut2, 0, out.data() + listed, room);
+        if (room >= len - from) {  // every candidate would fit: straight into the list
+          listed += filterInto(out.data() + listed, room);
+          continue;
+        }
+        // Near the end of the list's capacity: the kept entries go through the scratch
+        // buffer, and the list grows only by what was kept (growing by the candidates,
+        // several times what a particle keeps, left the last growth's excess unused).
+        const std::uint32_t kept = filterInto(buf.kept.data(), static_cast<std::uint32_t>(buf.kept.size()));
+        if (out.size() < listed + kept) grow(out, listed + kept);
+        using Out = typename std::remove_reference_t<decltype(out)>::value_type;
+        for (std::uint32_t q = 0; q < kept; ++q) out[listed + q] = static_cast<Out>(buf.kept[q]);
+        listed += kept;
       }
     }
     out.resize(listed);
+    trim(out, listed);
     return listed;
   };
   const std::uint32_t listed = layer.narrow ? fill(layer.near, layer.slots.begin) : fill(layer.far, 0u);
@@ -213,6 +242,7 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   else
     std::vector<std::uint16_t>().swap(layer.near);
   layer.start.back() = listed;
+  trim(layer.start, rows + 1);
 }
 
 // The pair forces of a chunk as records (x, y, z, 0), for pass 5 of the kernel: three

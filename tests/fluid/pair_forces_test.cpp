@@ -510,5 +510,41 @@ TEST(PairList, MemoryStaysCloseToWhatIsListed) {
   }
 }
 
+// A list rebuilt after the particles spread out (a splash after a dense pool) holds what
+// it now lists, not what it once did: each layer gives back what it no longer needs.
+TEST(PairList, GivesBackMemoryWhenTheParticlesSpreadOut) {
+  forces::InteractionTable table(1);
+  table.set(0, 0, {forces::Linear{5, 1.0, 0, 5}, 0, 0});
+  const ParticleStore spread = scenarios::randomCloud(30000, -10, 10, 0, 1, 4);
+  ParticleStore dense = spread;
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    dense.px[i] *= 0.5f;
+    dense.py[i] *= 0.5f;
+    dense.pz[i] *= 0.5f;
+  }
+  PairList list;
+  neighbors::CellGrid grid;
+  grid.rebuild(dense, 1.1f);
+  list.build(grid, table, dense, 0.1f);
+  const std::size_t densePairs = list.pairCount();
+  ParticleStore s = spread;
+  grid.rebuild(s, 1.1f);
+  list.build(grid, table, s, 0.1f);
+  ASSERT_GT(densePairs, 4 * list.pairCount());  // the spread cloud lists far fewer pairs
+  std::size_t listed = 0;
+  for (const PairList::Layer& l : list.layers()) {
+    listed += l.size();
+    EXPECT_LE(l.near.capacity() + l.far.capacity(), l.size() + l.size() / 4 + 8);
+  }
+  EXPECT_EQ(listed, list.pairCount());
+  for (std::uint32_t i = 0; i < s.size(); i += 97) {  // and it lists the right partners
+    std::vector<std::uint32_t> p = list.partners(i);
+    for (std::uint32_t j : p) {
+      const float dx = s.px[j] - s.px[i], dy = s.py[j] - s.py[i], dz = s.pz[j] - s.pz[i];
+      EXPECT_LT(dx * dx + dy * dy + dz * dz, 1.1f * 1.1f);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace softsub::fluid
