@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/particle_store.h"
@@ -125,7 +126,15 @@ class CellGrid {
   [[nodiscard]] std::size_t memoryBytes() const;
 
  private:
-  void sortKeys();
+  // The cells of the last rebuild, in the keys of this one, for sortKeys(): set by
+  // rebuild() before the new keys, valid when that rebuild's cells describe the same
+  // slots (same count, cell size and key axes, no wrap).
+  struct Previous {
+    bool valid = false;
+    std::array<std::int64_t, 3> shift{};  // added to each key field (minor, middle, major)
+  };
+  void sortKeys(const Previous& previous);
+  bool sortMovers(const Previous& previous);
   void buildCells();
   void buildHash();
   [[nodiscard]] std::int64_t findCell(std::uint64_t key) const;
@@ -143,6 +152,8 @@ class CellGrid {
   std::vector<std::uint64_t> hashKeys_;    // open addressing, capacity power of two
   std::vector<std::uint32_t> hashCells_;
   std::vector<SlotRange> layers_;
+  // The particles that changed cell since the last rebuild (sortMovers), as (key, slot).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> movers_;
   std::vector<std::vector<std::uint32_t>> phases_;
   std::uint64_t hashMask_ = 0;
   std::array<std::int64_t, 3> origin_{};  // the lowest cell coordinates of the last rebuild

@@ -243,6 +243,38 @@ void expectStableByCell(const CellGrid& g, const ParticleStore& s) {
   EXPECT_EQ(covered, s.size());
 }
 
+// A rebuild where a few particles changed cell takes them out, sorts them and merges
+// them back (CellGrid::sortMovers); its keys are counted from the lowest cell, so the
+// case where that corner moved (an outlier leaving or rejoining the cloud) shifts every
+// other key: still the stable order, as a grid that never saw the old order gives.
+TEST(CellGrid, ReSortOfAFewMoversIsStableWhenTheLowestCornerMoves) {
+  const float h = 1.0f;
+  for (const float outlier : {0.5f, -3.5f, 40.0f}) {
+    ParticleStore s = cloud(20000, 0.0f, 30.0f, 8);
+    s.px[0] = -6.5f;  // the lowest x of the first rebuild
+    CellGrid g;
+    g.rebuild(s, h);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f), step(-1.5f, 1.5f);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      s.id[i] = static_cast<std::uint32_t>(i);
+      if (u(rng) < 0.01f) {
+        s.px[i] = std::clamp(s.px[i] + step(rng), 0.0f, 29.99f);
+        s.pz[i] = std::clamp(s.pz[i] + 8 * step(rng), 0.0f, 29.99f);
+      }
+      if (s.px[i] == -6.5f) s.px[i] = outlier;  // the corner moves by -7, +3 or -46 cells
+    }
+    ParticleStore fresh = s;
+    g.rebuild(s, h);
+    expectStableByCell(g, s);
+    CellGrid other;
+    other.rebuild(fresh, h);
+    ASSERT_EQ(other.cellCount(), g.cellCount());
+    EXPECT_EQ(fresh.id, s.id) << "outlier at " << outlier;
+    EXPECT_EQ(fresh.px, s.px);
+  }
+}
+
 // The in-place radix sort from a shuffled store: cells crowded far beyond its insertion
 // threshold (ties broken by slot), just above that threshold, a cloud whose x
 // coordinates span two key bytes, and keys that wrap (a torus: outliers 1e9 away).
