@@ -17,6 +17,7 @@
 #include "cache/manifest.h"
 #include "cache/naming.h"
 #include "core/error.h"
+#include "number_checks.h"
 #include "progress.h"
 #include "run_journal.h"
 #include "scene/compile.h"
@@ -176,7 +177,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--speed-limit", o.speedLimit,
                   "Blow-up check: the most interaction distances a particle may cover in one substep; 0: no "
                   "speed check (non-finite values always stop the run)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(finiteNumberIn(0.0, 1e6, "0 to 1e6"))
       ->capture_default_str();
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "number_checks.h"
 
 namespace softsub::app {
 
@@ -16,12 +17,12 @@ void addSurfaceOptions(CLI::App* cmd, surface::SurfaceSettings& s, const std::st
   cmd->add_option("--voxel-size", s.voxelSize,
                   "Surface voxel edge in scene units: the resolution (default 0: half each fluid's particle size)" +
                       what)
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteNonNegative());
   cmd->add_option("--blob-radius", s.radiusScale,
                   fmt::format("Surface blob radius as a multiple of the particle size: the smoothing, {} to {} "
                               "(default {}, the seed's){}",
                               kMinBlobRadius, kMaxBlobRadius, surface::SurfaceSettings{}.radiusScale, what))
-      ->check(CLI::Range(kMinBlobRadius, kMaxBlobRadius));
+      ->check(finiteNumberIn(kMinBlobRadius, kMaxBlobRadius, fmt::format("{} to {}", kMinBlobRadius, kMaxBlobRadius)));
 }
 
 bool surfaceOptionsGiven(const surface::SurfaceSettings& s) {

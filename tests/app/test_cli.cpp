@@ -123,6 +123,21 @@ TEST(Cli, NegativeAndOutOfRangeOverridesExitTwoAndWriteNothing) {
   }
 }
 
+// --speed-limit nan once passed the range check (NaN fails every comparison) and turned
+// the blow-up check's speed test off without a word.
+TEST(Cli, SpeedLimitMustBeAFiniteNumber) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  for (const std::string bad : {"nan", "-nan", "NaN", "inf", "-1", "1e7"}) {
+    const RunResult r = runSoftsub("run --frames 1 --speed-limit " + bad + " " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("error: --speed-limit: " + bad + " is "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(allowed: 0 to 1e6)"), std::string::npos) << r.err;
+    EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"}) << bad;
+  }
+  EXPECT_EQ(runSoftsub("run --frames 0 --formats none --speed-limit 0 " + quote(scene), tmp.path()).code, 0);
+}
+
 // The ends of the ranges are allowed: --frames 0 writes only the initial state.
 TEST(Cli, OverridesAtTheEndsOfTheirRangesAreAccepted) {
   TempDir tmp;

@@ -73,6 +73,41 @@ TEST(SurfaceCli, VoxelSizeReachesTheLevelSetsAndIsCheckedFirst) {
   }
 }
 
+// NaN passes every "<" and ">" test, so a range check written that way let it through
+// to the surface stage ("internal error", exit 1, half-made folders). Every command's
+// surface options refuse it, and the infinities, before anything is made.
+TEST(SurfaceCli, NotANumberOrInfiniteSurfaceOptionsAreRefusedFirst) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  ASSERT_EQ(runSoftsub("run -q --frames 0 --formats sim " + quote(scene), tmp.path()).code, 0);
+  const fs::path recorded = tmp / "honey-dropSim";
+  const std::vector<std::string> before = listEntries(recorded);
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"run --formats mesh --voxel-size nan --out o", "--voxel-size: nan is not a number (allowed: a finite number >= 0)"},
+      {"run --formats vdb --voxel-size -nan --out o", "--voxel-size: -nan is not a number"},
+      {"run --formats mesh --voxel-size inf --out o", "--voxel-size: inf is out of range"},
+      {"run --formats mesh --blob-radius nan --out o", "--blob-radius: nan is not a number (allowed: 1 to 5)"},
+      {"render --surface --voxel-size nan --out o", "--voxel-size: nan is not a number"},
+      {"render --surface --blob-radius NaN --out o", "--blob-radius: NaN is not a number"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = runSoftsub(c.args + " " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "o")) << c.args;
+  }
+  for (const std::string bad : {"--voxel-size nan", "--formats vdb --voxel-size nan", "--blob-radius nan"}) {
+    const RunResult r = runSoftsub("mesh " + bad + " " + quote(recorded), tmp.path());
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("is not a number"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_EQ(listEntries(recorded), before) << bad;
+  }
+}
+
 // Total area of a triangle mesh.
 double area(const surface::SurfaceMesh& m) {
   double a = 0;
