@@ -5,7 +5,7 @@ with the binary)."""
 # section: [(tag, type, unit, default, allowed, meaning), ...]
 SCHEMA = {
     'Simulation': [
-        ('FramesPerSecond', 'real', '1/s', '24', '(0, 1000]', 'output frames per second (24 fps = 250 Maya ticks per frame)'),
+        ('FramesPerSecond', 'real', '1/s', '24', '[0.001, 1000]', 'output frames per second (24 fps = 250 Maya ticks per frame)'),
         ('Substeps', 'int', '-', '8', 'integer [1, 10000]', "updates per frame (the seed's -updateNum)"),
         ('Frames', 'int', '-', '120', 'integer [0, 1000000]', 'frames to simulate'),
         ('Gravity', 'vec3', 'units/s^2', '0 -9.81 0', '3 finite numbers', 'acceleration of gravity'),

@@ -39,7 +39,9 @@ namespace {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
-constexpr Range kFramesPerSecond{0, 1000, true, false};
+// At least 0.001: the time step 1 / (FramesPerSecond * Substeps) is then at most 1000 s,
+// finite in single precision (1e-300 once made it infinite and the run "blew up").
+constexpr Range kFramesPerSecond{0.001, 1000, false, false};
 constexpr Range kSubsteps{1, 10000, false, false};
 constexpr Range kFrames{0, 1000000, false, false};
 

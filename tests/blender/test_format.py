@@ -49,13 +49,13 @@ class SchemaTest(unittest.TestCase):
         self.assertEqual(schema.default("Simulation", "Gravity"), (0.0, -9.81, 0.0))
         self.assertEqual(schema.default("Object", "IsDynamic"), True)
         self.assertEqual(schema.default("Fluid", "Viscosity"), 1.0)
-        self.assertEqual(schema.bounds("Simulation", "FramesPerSecond"), (0.0, False, 1000.0, True))
+        self.assertEqual(schema.bounds("Simulation", "FramesPerSecond"), (0.001, True, 1000.0, True))
         self.assertEqual(schema.bounds("Simulation", "Substeps"), (1.0, True, 10000.0, True))
         self.assertEqual(schema.bounds("Fluid", "ParticleSize"), (0.0, False, None, False))
         self.assertEqual(schema.bounds("Object", "NormalAttenuation"), (0.0, True, 1.0, True))
         self.assertIsNone(schema.check_range("Fluid", "Viscosity", 0.0))
         self.assertIn("allowed: > 0", schema.check_range("Fluid", "ParticleSize", 0.0))
-        self.assertIn("allowed: (0, 1000]", schema.check_range("Simulation", "FramesPerSecond", 1001.0))
+        self.assertIn("allowed: [0.001, 1000]", schema.check_range("Simulation", "FramesPerSecond", 1001.0))
         self.assertEqual(schema.enum_items("Simulation", "Integrator"),
                          ["explicit-euler", "symplectic-euler", "velocity-verlet"])
 

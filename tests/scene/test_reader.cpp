@@ -199,7 +199,7 @@ TEST(Reader, RealsUpToSinglePrecisionAreAccepted) {
   const InputError fps =
       readError(sceneWith("<Simulation><FramesPerSecond>1e39</FramesPerSecond></Simulation>"));
   EXPECT_EQ(fps.problem(), "1e39 is out of range") << fps.what();
-  EXPECT_EQ(fps.allowed(), "(0, 1000]") << fps.what();
+  EXPECT_EQ(fps.allowed(), "[0.001, 1000]") << fps.what();
 }
 
 TEST(Reader, UpToTheFluidCapIsAccepted) {
