@@ -33,7 +33,7 @@ int meshCommand(const MeshOptions& o) {
     throw InputError({"command line", 0, "--formats"}, fmt::format("'{}' is not a surface format list", o.formats),
                      "mesh, vdb or mesh,vdb");
   const session::Playback playback(o.folder);
-  checkSurfaceOptions(o.surface, playback.load(0));
+  checkSurfaceOptions(o.surface, playback.load(0), o.folder);
   const surface::SurfaceSettings& settings = o.surface;
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 

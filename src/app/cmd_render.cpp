@@ -221,7 +221,7 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("no frame of {} is in '{}'", o.input, o.frames),
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
-    if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0));
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
@@ -251,7 +251,8 @@ int renderCommand(const RenderOptions& o) {
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
-    if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot());
+    if (o.surface)
+      checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), o.input.empty() ? loaded.name + ".scene" : o.input);
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);

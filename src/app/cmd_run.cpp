@@ -234,7 +234,8 @@ int runCommand(const RunOptions& o) {
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
                      "add mesh or vdb to --formats, or leave them out");
-  checkSurfaceOptions(o.surface, sim.snapshot());
+  if (formats.mesh || formats.vdb)
+    checkSurfaceOptions(o.surface, sim.snapshot(), o.scene.empty() ? loaded.name + ".scene" : o.scene);
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets nothing but errors.
   const bool chatty = stderrIsTerminal() && !o.quiet;

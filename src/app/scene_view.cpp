@@ -4,6 +4,7 @@
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "surface/surface.h"
+#include "surface/surface_writer.h"
 
 namespace softsub::app {
 
@@ -69,6 +70,7 @@ void PictureMaker::write(const std::filesystem::path& path, const FrameSnapshot&
 }
 
 std::vector<render::RenderSurface> surfacesOf(const FrameSnapshot& frame, const surface::SurfaceSettings& settings) {
+  surface::checkGridReach(frame, settings);  // a clear error, not the grid's internal one
   std::vector<render::RenderSurface> out;
   for (std::size_t i = 0; i < frame.fluids.size(); ++i) {
     const FluidSnapshot& f = frame.fluids[i];

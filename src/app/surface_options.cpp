@@ -1,5 +1,8 @@
 #include "surface_options.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -30,15 +33,35 @@ bool surfaceOptionsGiven(const surface::SurfaceSettings& s) {
   return s.voxelSize != defaults.voxelSize || s.radiusScale != defaults.radiusScale;
 }
 
-void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot& frame) {
-  if (s.voxelSize <= 0.0) return;
+void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot& frame, const std::string& source) {
   for (const FluidSnapshot& f : frame.fluids) {
     const double least = surface::minimumVoxelSize(f.particleSize, s);
-    if (s.voxelSize < least)
+    const double voxel = surface::voxelSizeFor(f.particleSize, s);
+    if (s.voxelSize > 0.0 && s.voxelSize < least)
       throw InputError({"command line", 0, "--voxel-size"},
                        fmt::format("{:g} is too small for fluid '{}' (particle size {:g})", s.voxelSize, f.name,
                                    f.particleSize),
-                       fmt::format("at least {:g} (blob radius / 64)", least));
+                       fmt::format("at least {:g} (blob radius / 64, and never below {:g})", least,
+                                   surface::kMinVoxelSize));
+    if (s.voxelSize <= 0.0 && voxel < least)
+      throw InputError({source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
+                       fmt::format("{:g} is too small for surfaces: the default voxel, half of it ({:g}), is below "
+                                   "the smallest the surfaces' grid takes",
+                                   f.particleSize, voxel),
+                       fmt::format("ParticleSize >= {:g} with surfaces, or --voxel-size {:g} or more",
+                                   2.0 * surface::kMinVoxelSize, least));
+    const double reach = surface::gridReach(voxel);
+    for (std::size_t i = 0; i < f.count(); ++i) {
+      const float* p = &f.positions[3 * i];
+      for (int k = 0; k < 3; ++k)
+        if (std::isfinite(p[k]) && std::abs(double(p[k])) > reach)
+          throw InputError(
+              {source, 0, fmt::format("Fluid '{}'/Particles", f.name)},
+              fmt::format("particle id {} at ({:g}, {:g}, {:g}) is too far from the origin for the surfaces' voxel "
+                          "grid (2^30 voxels of {:g})",
+                          f.ids[i], p[0], p[1], p[2], voxel),
+              fmt::format("|x|, |y|, |z| <= {:g} with surfaces; or a larger --voxel-size", reach));
+    }
   }
 }
 

@@ -20,7 +20,11 @@ void addSurfaceOptions(CLI::App* cmd, surface::SurfaceSettings& settings, const 
 [[nodiscard]] bool surfaceOptionsGiven(const surface::SurfaceSettings& settings);
 
 /// InputError naming --voxel-size when the voxel is too small to mesh a fluid of `frame`
-/// (below surface::minimumVoxelSize for its particle size and the blob radius).
-void checkSurfaceOptions(const surface::SurfaceSettings& settings, const FrameSnapshot& frame);
+/// (below surface::minimumVoxelSize for its particle size and the blob radius), or naming
+/// the fluid's ParticleSize or Particles in `source` (the scene or recording the frame
+/// comes from) when the default voxel is too small or a particle is beyond the grid's
+/// reach (surface::gridReach). Call it only when surfaces will be made.
+void checkSurfaceOptions(const surface::SurfaceSettings& settings, const FrameSnapshot& frame,
+                         const std::string& source);
 
 }  // namespace softsub::app

@@ -347,7 +347,10 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   initOpenVdb();
 
   auto impl = std::make_shared<Impl>();
-  impl->voxel = s.voxelSize > 0.0 ? s.voxelSize : particleSize / 2.0;
+  impl->voxel = voxelSizeFor(particleSize, s);
+  if (impl->voxel < kMinVoxelSize)
+    throw std::invalid_argument("surface: voxel size below the smallest the grid takes (allowed: voxel >= " +
+                                fmt::format("{:g}", kMinVoxelSize) + ")");
   const double vx = impl->voxel;
   const double radius = s.radiusScale * particleSize;  // blob radius
   auto threshold = static_cast<float>(s.threshold);
@@ -551,8 +554,14 @@ std::size_t LevelSet::activeVoxelCount() const {
 bool LevelSet::empty() const { return !impl_->field && (!impl_->grid || impl_->grid->tree().empty()); }
 
 double minimumVoxelSize(double particleSize, const SurfaceSettings& settings) {
-  return settings.radiusScale * particleSize / kMaxRadiusVoxels;
+  return std::max(settings.radiusScale * particleSize / kMaxRadiusVoxels, kMinVoxelSize);
 }
+
+double voxelSizeFor(double particleSize, const SurfaceSettings& settings) {
+  return settings.voxelSize > 0.0 ? settings.voxelSize : particleSize / 2.0;
+}
+
+double gridReach(double voxelSize) { return voxelSize * kMaxIndex; }
 
 SurfaceMesh meshParticles(std::span<const float> xyz, double particleSize,
                           const SurfaceSettings& settings) {

@@ -64,7 +64,8 @@ class LevelSet {
   /// The blobby field of the particles (xyz triples, scene units) of diameter
   /// particleSize, as a level set of its iso surface. Non-finite positions are skipped.
   /// Throws std::invalid_argument for a non-positive particle size or settings out of
-  /// range, or positions too far from the origin for the voxel grid (|x| / voxel > 2^30).
+  /// range (a voxel below minimumVoxelSize), or positions too far from the origin for the
+  /// voxel grid (beyond gridReach). Callers check these first, with their own errors.
   static LevelSet fromParticles(std::span<const float> positionsXYZ, double particleSize,
                                 const SurfaceSettings& settings = {});
   /// Reads the first float grid of a .vdb file (throws softsub::IoError if it cannot).
@@ -96,9 +97,20 @@ class LevelSet {
   std::shared_ptr<const Impl> impl_;
 };
 
+/// The smallest voxel edge at all, in scene units: OpenVDB refuses a transform whose scale
+/// cubed is below 3e-15 (a voxel below 1.45e-5); this rounds that up.
+inline constexpr double kMinVoxelSize = 2e-5;
+
 /// The smallest voxel fromParticles accepts for this particle size: blob radius / 64 (one
-/// blob alone would otherwise span more than a million voxels).
+/// blob alone would otherwise span more than a million voxels), and at least kMinVoxelSize.
 [[nodiscard]] double minimumVoxelSize(double particleSize, const SurfaceSettings& settings = {});
+
+/// The voxel fromParticles uses: settings.voxelSize, or particleSize / 2 when that is 0.
+[[nodiscard]] double voxelSizeFor(double particleSize, const SurfaceSettings& settings = {});
+
+/// How far from the origin, along each axis, a particle may be for a grid of this voxel:
+/// 2^30 voxels. fromParticles refuses positions beyond it.
+[[nodiscard]] double gridReach(double voxelSize);
 
 /// Shortcut: LevelSet::fromParticles(...).mesh().
 SurfaceMesh meshParticles(std::span<const float> positionsXYZ, double particleSize,

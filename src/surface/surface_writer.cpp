@@ -1,7 +1,11 @@
 #include "surface/surface_writer.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <system_error>
+
+#include <fmt/format.h>
 
 #include "cache/atomic_file.h"
 #include "cache/naming.h"
@@ -50,10 +54,29 @@ cache::ObjectMesh toObjectMesh(const SurfaceMesh& mesh, const std::string& name)
 SurfaceWriter::SurfaceWriter(std::filesystem::path outputDir, bool mesh, bool vdb, SurfaceSettings settings)
     : dir_(std::move(outputDir)), mesh_(mesh), vdb_(vdb), settings_(settings) {}
 
+void checkGridReach(const FrameSnapshot& frame, const SurfaceSettings& settings) {
+  for (const FluidSnapshot& fluid : frame.fluids) {
+    const double voxel = voxelSizeFor(fluid.particleSize, settings);
+    const double reach = gridReach(voxel);
+    for (std::size_t i = 0; i < fluid.count(); ++i) {
+      const float* p = &fluid.positions[3 * i];
+      bool beyond = false;
+      for (int k = 0; k < 3; ++k) beyond = beyond || (std::isfinite(p[k]) && std::abs(double(p[k])) > reach);
+      if (beyond)
+        throw BlowUpError(fmt::format(
+            "frame {}: fluid '{}', particle id {} is at ({:g}, {:g}, {:g}), too far from the origin for the "
+            "surface's voxel grid (|x|, |y|, |z| <= {:g}: 2^30 voxels of {:g}); keep the particles in with an "
+            "<Environment>, or give a larger --voxel-size",
+            frame.frame, fluid.name, fluid.ids[i], p[0], p[1], p[2], reach, voxel));
+    }
+  }
+}
+
 void SurfaceWriter::onFrame(const FrameSnapshot& frame) {
   written_.clear();
   if (!mesh_ && !vdb_) return;
   for (const FluidSnapshot& fluid : frame.fluids) cache::checkFileNamePart(fluid.name, "Fluid/Name");
+  checkGridReach(frame, settings_);
   if (!foldersReady_) {
     if (mesh_) cache::ensureDirectory(dir_ / "mesh");
     if (vdb_) cache::ensureDirectory(dir_ / "vdb");

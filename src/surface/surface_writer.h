@@ -23,6 +23,11 @@ namespace softsub::surface {
 /// shortest decimals that read back as the same floats.
 [[nodiscard]] cache::ObjectMesh toObjectMesh(const SurfaceMesh& mesh, const std::string& name);
 
+/// Throws softsub::BlowUpError naming the frame, the fluid, the particle and its position
+/// when a (finite) particle of `frame` is beyond gridReach of its fluid's voxel: a particle
+/// that flew that far cannot be meshed (the simulation keeps it; its surface cannot).
+void checkGridReach(const FrameSnapshot& frame, const SurfaceSettings& settings);
+
 /// The surface files of each frame. A fluid with no particle gets an empty OBJ (a comment
 /// and its `o` line: valid, no face) and an empty level set, so every frame of a sequence
 /// has its file. Identical frames give byte-identical OBJ files.
@@ -32,7 +37,8 @@ class SurfaceWriter : public FrameObserver {
   SurfaceWriter(std::filesystem::path outputDir, bool mesh, bool vdb, SurfaceSettings settings = {});
 
   /// Meshes every fluid of the frame and writes its files. IoError when one cannot be
-  /// written, InputError for a fluid name that cannot be part of a file name.
+  /// written, InputError for a fluid name that cannot be part of a file name, BlowUpError
+  /// (checkGridReach, before anything of the frame is written) for a particle too far out.
   void onFrame(const FrameSnapshot& frame) override;
 
   /// The files the last onFrame wrote, in the order written.

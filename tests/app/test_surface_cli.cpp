@@ -1,6 +1,7 @@
 // The fluids' surfaces end to end: `run --formats ...,mesh,vdb` and `softsub mesh` on a
 // recorded folder.
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -106,6 +107,94 @@ TEST(SurfaceCli, NotANumberOrInfiniteSurfaceOptionsAreRefusedFirst) {
     EXPECT_NE(r.err.find("is not a number"), std::string::npos) << bad << ": " << r.err;
     EXPECT_EQ(listEntries(recorded), before) << bad;
   }
+}
+
+/// Writes `text` to `path`.
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+/// A scene of one fluid 'a' with the given explicit particles and extra elements.
+std::string oneFluid(const std::string& particleSize, const std::string& particles, const std::string& simulation = "") {
+  return "<Scene version=\"1\"><Simulation><Substeps>1</Substeps><Frames>2</Frames>" + simulation +
+         "</Simulation><Fluid><Name>a</Name><ParticleSize>" + particleSize + "</ParticleSize><Particles>" + particles +
+         "</Particles></Fluid></Scene>\n";
+}
+
+// The default voxel is half the particle size; below 2e-5 OpenVDB refuses the grid's
+// transform ("internal error: ArithmeticError", exit 1, empty mesh/ and vdb/ folders).
+// It is now refused before anything is made, naming the particle size and the way out.
+TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
+  TempDir tmp;
+  const fs::path scene = tmp / "tiny.scene";
+  writeText(scene, oneFluid("1e-5", "0 0 0  1e-5 0 0"));
+  for (const std::string formats : {"mesh", "vdb", "sim,mesh,vdb"}) {
+    const RunResult r = runSoftsub("run --formats " + formats + " --out o " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << formats << ": " << r.err;
+    EXPECT_NE(r.err.find("tiny.scene: Fluid 'a'/ParticleSize: 1e-05 is too small for surfaces"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("(allowed: ParticleSize >= 4e-05 with surfaces, or --voxel-size 2e-05 or more)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "o")) << formats;
+  }
+  const RunResult voxel = runSoftsub("run --formats mesh --voxel-size 1e-5 --out o " + quote(scene), tmp.path());
+  EXPECT_EQ(voxel.code, 2) << voxel.err;
+  EXPECT_NE(voxel.err.find("--voxel-size: 1e-05 is too small for fluid 'a'"), std::string::npos) << voxel.err;
+  EXPECT_NE(voxel.err.find("never below 2e-05"), std::string::npos) << voxel.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+  const RunResult render = runSoftsub("render --surface --frames 0 --out r " + quote(scene), tmp.path());
+  EXPECT_EQ(render.code, 2) << render.err;
+  EXPECT_FALSE(fs::exists(tmp / "r"));
+  // Without surfaces the particle size is fine, and a voxel of 2e-5 meshes it.
+  EXPECT_EQ(runSoftsub("run --formats sim --out s " + quote(scene), tmp.path()).code, 0);
+  const RunResult meshed = runSoftsub("run --formats mesh --voxel-size 2e-5 --out m " + quote(scene), tmp.path());
+  EXPECT_EQ(meshed.code, 0) << meshed.err;
+  EXPECT_TRUE(fs::exists(tmp / "m/mesh/a.0002.obj"));
+}
+
+// The surface grid indexes voxels with 32-bit integers: a particle more than 2^30 voxels
+// from the origin cannot be meshed. In the scene it is bad input, refused before anything
+// is written (it was "internal error", exit 1, after frame 0's .sim and an empty mesh/).
+TEST(SurfaceCli, AParticleBeyondTheGridsReachInTheSceneIsRefusedFirst) {
+  TempDir tmp;
+  const fs::path scene = tmp / "far.scene";
+  writeText(scene, oneFluid("1", "0 1 0  1e12 0 0"));
+  for (const std::string formats : {"sim,mesh", "vdb"}) {
+    const RunResult r = runSoftsub("run --formats " + formats + " --out o " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << formats << ": " << r.err;
+    EXPECT_NE(r.err.find("far.scene: Fluid 'a'/Particles: particle id 1 at (1e+12, 0, 0) is too far from the origin"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("(allowed: |x|, |y|, |z| <= 5.36871e+08 with surfaces; or a larger --voxel-size)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "o")) << formats;
+  }
+  const RunResult render = runSoftsub("render --surface --frames 0 --out r " + quote(scene), tmp.path());
+  EXPECT_EQ(render.code, 2) << render.err;
+  EXPECT_FALSE(fs::exists(tmp / "r"));
+  // A coarser voxel reaches farther.
+  EXPECT_EQ(runSoftsub("run --frames 0 --formats mesh --voxel-size 2000 --out c " + quote(scene), tmp.path()).code, 0);
+}
+
+// A particle that flies beyond the grid during the run: exit 4 like a blow-up, naming the
+// frame, fluid and particle; the frames before it are complete.
+TEST(SurfaceCli, AParticleThatFliesBeyondTheGridsReachStopsTheRunClearly) {
+  TempDir tmp;
+  const fs::path scene = tmp / "fly.scene";
+  writeText(scene, oneFluid("1", "0 1 0  536000000 0 0", "<Gravity>1e9 0 0</Gravity>"));
+  const RunResult r = runSoftsub("run --speed-limit 0 --formats sim,mesh --out o " + quote(scene), tmp.path());
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(r.err.rfind("error: frame 1: fluid 'a', particle id 1 is at (", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("too far from the origin for the surface's voxel grid (|x|, |y|, |z| <= 5.36871e+08"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("frames 0..0 are complete"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(tmp / "o/manifest/fly.0000.manifest"));
+  EXPECT_TRUE(fs::exists(tmp / "o/mesh/a.0000.obj"));
+  EXPECT_FALSE(fs::exists(tmp / "o/mesh/a.0001.obj"));
 }
 
 // Total area of a triangle mesh.
