@@ -26,7 +26,7 @@ SCHEMA = {
         ('Closed', 'bool', '-', 'false', 'true, false, 1, 0', 'extension: a lid at y = Height too (a jar)'),
     ],
     'Fluid': [
-        ('Name', 'string', '-', 'required', 'letters, digits, _ and -; unique', "the fluid's name; part of output file names"),
+        ('Name', 'string', '-', 'required', 'letters, digits, _ and -, at most 100 characters; unique', "the fluid's name; part of output file names"),
         ('InteractionDistance', 'real', 'units', '1.5', '> 0', "distance from which the fluid's own force is zero"),
         ('Amplitude', 'real', 'force', '30', '>= 0', "A in the fluid's own force 4A((s/r)^12 - (s/r)^6)"),
         ('FiniteDistance', 'real', 'units', '1', '> 0', "s: distance where the fluid's own force is zero"),
@@ -57,7 +57,7 @@ SCHEMA = {
         ('Surface', 'bool', '-', 'false', 'true, false, 1, 0', 'extension: particles on the surface only (thin shells, open meshes) instead of the volume'),
     ],
     'Object': [
-        ('Name', 'string', '-', 'object<N>`, N its position among the objects (from 1)', 'no slash, backslash or control character; unique among the objects and fluids', "the object's name, in .sim files and in Pair"),
+        ('Name', 'string', '-', 'object<N>`, N its position among the objects (from 1)', 'at most 100 characters, no slash, backslash or control character; unique among the objects and fluids', "the object's name, in .sim files and in Pair"),
         ('Geometry', 'string', '-', 'none: a primitive (Shape and Size)', "a relative path that stays inside the scene's folder tree (symbolic links resolved)", "mesh file (OBJ, PLY, STL, glTF, FBX...), relative to the scene's folder; closed when Shape is mesh and IsDynamic is true"),
         ('Shape', 'enum', '-', 'mesh when Geometry is given (else required)', 'mesh, sphere, cone, box, cylinder; mesh needs Geometry; a primitive without Geometry needs Size', 'the primitive whose inertia approximates the body, or mesh: the exact inertia of the closed mesh'),
         ('Size', 'real list', 'units', 'none: fitted to Geometry', 'numbers > 0; 1, 2 or 3 numbers by Shape (sphere, cone/cylinder, box); not with Shape mesh', "the primitive's extents: sphere radius; cone and cylinder radius height (axis along y); box width height depth"),

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/names.h"
 #include "geometry/fill.h"
 #include "geometry/mass_properties.h"
 #include "geometry/mesh_loader.h"
@@ -36,15 +37,26 @@ bool isNameChar(char c) {
          c == '-';
 }
 
-bool validName(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), isNameChar); }
+bool validName(std::string_view s) {
+  return !s.empty() && s.size() <= kMaxNameLength && std::all_of(s.begin(), s.end(), isNameChar);
+}
+
+// The problem with a name that is too long (kMaxNameLength), or empty for one that is not.
+std::string lengthProblem(std::string_view s) {
+  if (s.size() <= kMaxNameLength) return {};
+  return fmt::format("the name is {} characters long: its output file names (with frame numbers, extensions and "
+                     "the temporary name of an atomic write) would pass the system's 255-byte limit",
+                     s.size());
+}
 
 // An object's name becomes part of file names: the rule of cache::checkFileNamePart (not
 // empty, no '/', '\\' or control character), checked here so a bad name is an error at
 // its line.
 constexpr std::string_view kObjectNameAllowed =
-    "a non-empty name without '/', '\\' or control characters";
+    "a non-empty name of at most 100 characters without '/', '\\' or control characters";
+static_assert(kMaxNameLength == 100, "kObjectNameAllowed and the schema's Name rules say 100");
 bool usableObjectName(std::string_view s) {
-  return !s.empty() && std::none_of(s.begin(), s.end(), [](char c) {
+  return !s.empty() && s.size() <= kMaxNameLength && std::none_of(s.begin(), s.end(), [](char c) {
     const auto u = static_cast<unsigned char>(c);
     return c == '/' || c == '\\' || u < 0x20 || u == 0x7f;
   });
@@ -423,8 +435,9 @@ class SceneReader {
     c.run();
 
     if (!validName(fluid.name)) {
+      const std::string tooLong = lengthProblem(fluid.name);
       cx_.fail(c.lineOf("Name"), label + "/Name",
-               fmt::format("{} is not a valid fluid name", quote(fluid.name)),
+               !tooLong.empty() ? tooLong : fmt::format("{} is not a valid fluid name", quote(fluid.name)),
                allowedText(infoOf<FluidDesc>("Name")));
     }
     claimName(fluid.name, false, c.lineOf("Name"), label + "/Name", "fluid name");
@@ -593,9 +606,11 @@ class SceneReader {
       claimName(object.name, true, object.line, label, "default object name");
     } else {
       if (!usableObjectName(object.name)) {
+        const std::string tooLong = lengthProblem(object.name);
         cx_.fail(c.lineOf("Name"), label + "/Name",
-                 fmt::format("{} is not a valid object name: it becomes part of file names",
-                             quote(object.name)),
+                 !tooLong.empty() ? tooLong
+                                  : fmt::format("{} is not a valid object name: it becomes part of file names",
+                                                quote(object.name)),
                  std::string(kObjectNameAllowed));
       }
       claimName(object.name, true, c.lineOf("Name"), label + "/Name", "object name");
@@ -930,6 +945,13 @@ std::string byteCount(std::uint64_t n) {
 }
 
 }  // namespace
+
+void checkFluidName(std::string_view name, const InputLocation& where) {
+  if (validName(name)) return;
+  const std::string tooLong = lengthProblem(name);
+  throw InputError(where, !tooLong.empty() ? tooLong : fmt::format("{} is not a valid fluid name", quote(name)),
+                   allowedText(infoOf<FluidDesc>("Name")));
+}
 
 SceneDesc readSceneText(std::string_view text, const std::string& fileName,
                         const ReadOptions& options) {

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/error.h"
 #include "scene/scene_desc.h"
 
 namespace softsub::scene {
@@ -37,5 +38,10 @@ SceneDesc readSceneFile(const std::string& path, const ReadOptions& options = {}
 /// Throws InputError if it is not a valid scene.
 SceneDesc readSceneText(std::string_view text, const std::string& fileName,
                         const ReadOptions& options = {});
+
+/// Throws InputError at `where` unless `name` is a valid fluid name, with the problem and
+/// rule the reader gives for a <Fluid><Name>: letters, digits, _ and -, not empty, at most
+/// kMaxNameLength (core/names.h) characters. For names from elsewhere (`fill --name`).
+void checkFluidName(std::string_view name, const InputLocation& where);
 
 }  // namespace softsub::scene

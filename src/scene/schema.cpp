@@ -110,7 +110,7 @@ using fluid::FluidParams;
 constexpr Field<FluidDesc> kFluid[] = {
     field<&FluidDesc::name>({.tag = "Name", .kind = Kind::String, .unit = "-",
                              .meaning = "the fluid's name; part of output file names",
-                             .rule = "letters, digits, _ and -; unique",
+                             .rule = "letters, digits, _ and -, at most 100 characters; unique",
                              .required = true}),
     field<&FluidDesc::params, &FluidParams::interactionDistance>(
         {.tag = "InteractionDistance", .kind = Kind::Real, .unit = "units", .range = kPositive,
@@ -263,7 +263,7 @@ constexpr Field<ObjectDesc> kObject[] = {
     field<&ObjectDesc::name>(
         {.tag = "Name", .kind = Kind::String, .unit = "-",
          .meaning = "the object's name, in .sim files and in Pair",
-         .rule = "no slash, backslash or control character; unique among the objects and fluids",
+         .rule = "at most 100 characters, no slash, backslash or control character; unique among the objects and fluids",
          .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
     field<&ObjectDesc::geometry>(
         {.tag = "Geometry", .kind = Kind::String, .unit = "-",

@@ -1,6 +1,7 @@
 // `softsub run` end to end: the files it writes, what they hold, determinism, formats,
 // the seed's flags, and what it reports.
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -235,6 +236,36 @@ TEST(Run, ZeroFramesWritesTheInitialState) {
                                  tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(listFrameFiles(tmp / "o"), std::vector<std::string>{"jelly-block.0000.sim"});
+}
+
+// A fluid or object name becomes part of file names; the longest, a PDC file's temporary
+// name, adds some 125 bytes. Names of 100 characters write every format; 101 are refused
+// when the scene is read (235 once passed and failed at the first write, exit 3).
+TEST(Run, NamesOfTheLongestAllowedLengthWriteEveryFormat) {
+  TempDir tmp;
+  const auto sceneOf = [](std::size_t length) {
+    return "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
+           "<Fluid><Name>" + std::string(length, 'f') + "</Name><Particles>0 1 0  1 1 0</Particles></Fluid>"
+           "<Object><Name>" + std::string(length, 'o') + "</Name><Shape>sphere</Shape><Size>1</Size>"
+           "<InitialPosition>0 5 0</InitialPosition></Object></Scene>\n";
+  };
+  std::ofstream(tmp / "long.scene") << sceneOf(100);
+  const RunResult r = runSoftsub("run --formats all,mesh,vdb --out o long.scene", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(tmp / "o/pdc" / (std::string(100, 'f') + "Shape.250.pdc")));
+  EXPECT_TRUE(fs::exists(tmp / "o/vdb" / (std::string(100, 'f') + ".0001.vdb")));
+  EXPECT_TRUE(fs::exists(tmp / "o/longGeo" / (std::string(100, 'o') + ".obj")));
+  for (const std::string which : {"fluid", "object"}) {
+    std::string text = sceneOf(100);
+    const char c = which == "fluid" ? 'f' : 'o';
+    text.replace(text.find(std::string(100, c)), 100, std::string(101, c));
+    std::ofstream(tmp / "longer.scene") << text;
+    const RunResult refused = runSoftsub("run --formats all,mesh,vdb --out p longer.scene", tmp.path());
+    EXPECT_EQ(refused.code, 2) << which << ": " << refused.err;
+    EXPECT_NE(refused.err.find("longer.scene:1: "), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("/Name: the name is 101 characters long"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(tmp / "p")) << which;
+  }
 }
 
 }  // namespace
