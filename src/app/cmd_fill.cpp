@@ -13,6 +13,7 @@
 #include "geometry/fill.h"
 #include "geometry/mesh_loader.h"
 #include "progress.h"
+#include "scene/reader.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -27,7 +28,9 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
                 "Print a <Fluid> block with the particles to paste into a .scene (the default without --out)")
       ->excludes(out);
   cmd->add_flag("--surface", o.surface, "Sample the surface only (thin shells, open meshes)");
-  cmd->add_option("--name", o.name, "Name of the fluid in the snippet or the PLY (default: filled)");
+  cmd->add_option("--name", o.name,
+                  "Name of the fluid in the snippet or the PLY: letters, digits, _ and -, at most 100 characters, "
+                  "as in a scene (default: filled)");
   cmd->add_option("--max-particles", o.maxParticles, "Refuse fills larger than this (default: 20,000,000)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on stderr but errors");
@@ -57,6 +60,9 @@ std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
 }  // namespace
 
 int fillCommand(const FillOptions& o) {
+  // The name goes into a scene (the snippet, unescaped) or becomes a fluid's (the PLY): the
+  // reader's rule for fluid names, checked before the mesh is read.
+  scene::checkFluidName(o.name, {"command line", 0, "--name"});
   if (!(o.spacing > 0))
     throw InputError({"command line", 0, "--spacing"}, fmt::format("{} is not a valid spacing", o.spacing),
                      "a number > 0");

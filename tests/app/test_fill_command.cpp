@@ -48,5 +48,36 @@ TEST(FillCommand, BadInputExitsTwoMissingFileThree) {
   EXPECT_EQ(listEntries(tmp.path()), (std::vector<std::string>{"box.obj", "junk.obj"}));
 }
 
+// --name went into the snippet unescaped and unchecked (`<Name><x>&</Name>`, a broken
+// scene); it now follows the reader's rule for fluid names in both modes, checked first.
+TEST(FillCommand, NamesFollowTheScenesFluidNameRule) {
+  TempDir tmp;
+  writeBoxObj(tmp / "box.obj", 2.0);
+  struct Case {
+    std::string name;
+    std::string problem;
+  };
+  const std::vector<Case> cases = {
+      {"'<x>&'", "'<x>&' is not a valid fluid name"},
+      {"a/b", "'a/b' is not a valid fluid name"},
+      {"''", "is not a valid fluid name"},
+      {"'two words'", "'two words' is not a valid fluid name"},
+      {std::string(101, 'n'), "the name is 101 characters long"},
+  };
+  for (const Case& c : cases)
+    for (const std::string mode : {"--scene-snippet", "--out x.ply"}) {
+      const RunResult r = runSoftsub("fill box.obj --spacing 1 " + mode + " --name " + c.name, tmp.path());
+      EXPECT_EQ(r.code, 2) << c.name << " " << mode << ": " << r.err;
+      EXPECT_EQ(r.err.rfind("error: command line: --name: ", 0), 0u) << r.err;
+      EXPECT_NE(r.err.find(c.problem), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("(allowed: letters, digits, _ and -, at most 100 characters"), std::string::npos) << r.err;
+      EXPECT_TRUE(r.out.empty()) << c.name << " " << mode;
+      EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"box.obj"}) << c.name << " " << mode;
+    }
+  const RunResult ok = runSoftsub("fill box.obj --spacing 1 --name " + std::string(100, 'n'), tmp.path());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("<Name>" + std::string(100, 'n') + "</Name>"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace softsub::apptest
