@@ -335,7 +335,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Refusal{"MovieOddWidth", "--width 321 --height 200 --movie m.mp4", "--movie"},
                       Refusal{"MovieOddHeight", "--width 320 --height 201 --movie m.mp4", "--movie"},
                       Refusal{"VoxelWithoutSurface", "--voxel-size 0.1", "--voxel-size"},
-                      Refusal{"VoxelTooSmall", "--surface --voxel-size 1e-6", "--voxel-size"}),
+                      Refusal{"VoxelTooSmall", "--surface --voxel-size 1e-6", "--voxel-size"},
+                      // 100000 was accepted while run, view and the schema stop at 10000.
+                      Refusal{"SubstepsAboveTheSchemasCap", "--substeps 10001", "--substeps"}),
     [](const auto& p) { return p.param.name; });
 
 TEST(RenderCli, AFolderWithoutFramesIsRefused) {
