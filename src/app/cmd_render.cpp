@@ -249,6 +249,9 @@ int renderCommand(const RenderOptions& o) {
                                    loaded.desc.simulation.frames),
                        fmt::format("frames in [0, {}]", loaded.desc.simulation.frames));
     scene::Compiled compiled = scene::compile(loaded.desc);
+    if (chatty)
+      for (const std::string& w : compiled.warnings)
+        fmt::print(stderr, "warning: {}: {}\n", o.input.empty() ? loaded.name + ".scene" : o.input, w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));

@@ -239,8 +239,11 @@ int runCommand(const RunOptions& o) {
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets nothing but errors.
   const bool chatty = stderrIsTerminal() && !o.quiet;
-  if (chatty)
+  if (chatty) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
+    for (const std::string& w : compiled.warnings)
+      fmt::print(stderr, "warning: {}: {}\n", o.scene.empty() ? loaded.name + ".scene" : o.scene, w);
+  }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
 

@@ -1,7 +1,14 @@
 #include "scene/compile.h"
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "geometry/fill.h"
 #include "geometry/mesh_loader.h"
@@ -27,6 +34,53 @@ namespace {
 
 forces::Interaction toInteraction(const InteractionDesc& d) {
   return {d.function, d.damping, d.relativeVelocity};
+}
+
+}  // namespace
+
+namespace {
+
+// See Compiled::warnings. The fluids' particles, one fluid at a time (they come first,
+// in scene order); the objects' particles are placed from their bodies by the
+// simulation, not here.
+std::vector<std::string> initialStateWarnings(const solver::Model& m, const ParticleStore& s) {
+  std::vector<std::string> out;
+  std::vector<std::pair<std::size_t, std::string>> groups;  // first slot past each fluid
+  std::size_t n = 0;
+  for (const solver::FluidInfo& f : m.fluids) {
+    n += f.count;
+    groups.emplace_back(n, fmt::format("Fluid '{}'", f.name));
+  }
+  if (m.container) {
+    const solver::Container& c = *m.container;
+    const auto outside = [&](std::size_t i) {
+      return s.px[i] < c.lo[0] || s.px[i] > c.hi[0] || s.py[i] < c.lo[1] || (c.closed && s.py[i] > c.hi[1]) ||
+             s.pz[i] < c.lo[2] || s.pz[i] > c.hi[2];
+    };
+    std::size_t from = 0;
+    for (const auto& [to, what] : groups) {
+      std::size_t count = 0;
+      for (std::size_t i = from; i < to; ++i) count += outside(i) ? 1 : 0;
+      if (count > 0)
+        out.push_back(fmt::format(
+            "{}: {} of {} particles start outside the container (x [{:g}, {:g}], y [{:g}, {}], z [{:g}, {:g}]); "
+            "its walls put them back inside on the first substep, with a jolt",
+            what, count, to - from, c.lo[0], c.hi[0], c.lo[1], c.closed ? fmt::format("{:g}", c.hi[1]) : "open top",
+            c.lo[2], c.hi[2]));
+      from = to;
+    }
+  }
+  // Exact duplicates: sorted positions, equal neighbours.
+  std::vector<std::array<float, 3>> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = {s.px[i], s.py[i], s.pz[i]};
+  std::sort(p.begin(), p.end());
+  std::size_t same = 0;
+  for (std::size_t i = 1; i < n; ++i) same += p[i] == p[i - 1] ? 1 : 0;
+  if (same > 0)
+    out.push_back(fmt::format("Particles: {} {} exactly where another one does (a repeated <Fill> or point?); a "
+                              "pair at distance 0 has no direction, so they never push apart",
+                              same, same == 1 ? "particle sits" : "particles sit"));
+  return out;
 }
 
 }  // namespace
@@ -105,6 +159,7 @@ Compiled compile(const SceneDesc& desc) {
     nextId += info.count;
   }
   addBodies(desc, m, out.state, out.objectMeshes);
+  out.warnings = initialStateWarnings(m, store);
   return out;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 /// SceneDesc -> Model (read-only) + State (mutable).
+#include <string>
 #include <vector>
 
 #include "geometry/triangle_mesh.h"
@@ -15,6 +16,12 @@ struct Compiled {
   /// Each object's geometry in its own coordinates before UniformScale (scene order):
   /// what the `.sim` transforms place, written once beside the frames.
   std::vector<geometry::TriangleMesh> objectMeshes;
+  /// What the fluids' initial particles have that a user most likely did not mean, one
+  /// line each (`<element>: <text>`): particles outside the container (the walls put
+  /// them back inside on the first substep, with a jolt), and particles at exactly the
+  /// same place as another (a pair at distance 0 has no direction: they never push
+  /// apart).
+  std::vector<std::string> warnings;
 };
 
 /// Builds the model (materials, interaction table, container, options) and the initial

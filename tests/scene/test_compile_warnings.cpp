@@ -1,0 +1,61 @@
+// The warnings compile() gives about a scene's initial fluid particles: outside the
+// container, or exactly where another particle is. Only a scene that has them gets them.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/compile.h"
+#include "scene/reader.h"
+#include "scene_test_util.h"
+
+namespace softsub::scene {
+namespace {
+
+using testing::sceneWith;
+
+const std::string kBox = "<Environment><Width>10</Width><Height>10</Height><Depth>10</Depth></Environment>\n";
+
+std::string fill(const std::string& min, const std::string& max) {
+  return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max + "</Max><Spacing>1</Spacing></Fill>";
+}
+
+std::vector<std::string> warningsOf(const std::string& body) {
+  return compile(readSceneText(sceneWith(body), "t.scene")).warnings;
+}
+
+TEST(CompileWarnings, NoneForParticlesApartAndInside) {
+  EXPECT_TRUE(warningsOf(kBox + "<Fluid><Name>a</Name>" + fill("-2 0 -2", "2 2 2") + "</Fluid>").empty());
+  // Without a container nothing is outside.
+  EXPECT_TRUE(warningsOf("<Fluid><Name>a</Name>" + fill("20 0 0", "22 2 2") + "</Fluid>").empty());
+}
+
+TEST(CompileWarnings, CountsTheParticlesOfEachFluidOutsideTheContainer) {
+  // Cell centres x = 3.5 .. 7.5 at spacing 1: 5.5, 6.5 and 7.5 lie beyond the wall at 5.
+  const std::vector<std::string> w = warningsOf(kBox + "<Fluid><Name>in</Name>" + fill("-1 0 -1", "1 1 1") +
+                                                "</Fluid><Fluid><Name>out</Name>" + fill("3 0 0", "8 1 1") + "</Fluid>");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("Fluid 'out': 3 of 5 particles start outside the container"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("y [0, open top]"), std::string::npos) << w[0];
+  // Above an open top is not outside; above a closed one is.
+  EXPECT_TRUE(warningsOf(kBox + "<Fluid><Name>a</Name>" + fill("0 12 0", "1 15 1") + "</Fluid>").empty());
+  const std::string closed =
+      "<Environment><Width>10</Width><Height>10</Height><Depth>10</Depth><Closed>true</Closed></Environment>\n";
+  const std::vector<std::string> lid = warningsOf(closed + "<Fluid><Name>a</Name>" + fill("0 8 0", "1 14 1") + "</Fluid>");
+  ASSERT_EQ(lid.size(), 1u);  // y = 8.5 .. 13.5 under a lid at 10
+  EXPECT_NE(lid[0].find("Fluid 'a': 4 of 6 particles start outside"), std::string::npos) << lid[0];
+}
+
+TEST(CompileWarnings, CountsParticlesThatSitExactlyOnAnother) {
+  // The same fill twice: each of its 8 points twice; and across fluids.
+  const std::vector<std::string> twice = warningsOf(kBox + "<Fluid><Name>a</Name>" + fill("0 0 0", "2 2 2") +
+                                                    fill("0 0 0", "2 2 2") + "</Fluid>");
+  ASSERT_EQ(twice.size(), 1u);
+  EXPECT_NE(twice[0].find("8 particles sit exactly where another one does"), std::string::npos) << twice[0];
+  const std::vector<std::string> across = warningsOf(kBox + "<Fluid><Name>a</Name><Particles>1 1 1  1 1 1.001</Particles>"
+                                                     "</Fluid><Fluid><Name>b</Name><Particles>1 1 1</Particles></Fluid>");
+  ASSERT_EQ(across.size(), 1u);
+  EXPECT_NE(across[0].find("1 particle sits exactly"), std::string::npos) << across[0];
+}
+
+}  // namespace
+}  // namespace softsub::scene
