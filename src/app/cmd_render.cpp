@@ -1,4 +1,5 @@
 #include "cmd_render.h"
+#include "number_checks.h"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -174,7 +175,7 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps> (1 to 10000, as in a scene)")
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
-      ->check(CLI::PositiveNumber);
+      ->check(particleCap());
   cmd->add_flag("--surface", o.surface,
                 "Draw each fluid's surface (as softsub mesh makes it) instead of its particles");
   addSurfaceOptions(cmd, o.surfaceSettings, "; with --surface");

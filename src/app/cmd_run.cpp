@@ -185,7 +185,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   run->add_option("--max-particles", o.maxParticles,
                   "Refuse scenes with more particles than this (default: the reader's limit)")
-      ->check(CLI::PositiveNumber);
+      ->check(particleCap());
   run->add_flag("--print-scene", o.printScene, "Print the embedded default scene and exit");
   run->add_flag("--preview", o.preview,
                 "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed)");

@@ -1,4 +1,5 @@
 #include "cmd_view.h"
+#include "number_checks.h"
 
 #include <CLI/CLI.hpp>
 
@@ -26,7 +27,7 @@ CLI::App* addViewCommand(CLI::App& root, ViewOptions& o) {
   cmd->add_option("--height", o.height, "Window height")->check(CLI::Range(150, 16384))->capture_default_str();
   cmd->add_flag("--paused", o.paused, "Start paused (Space plays, N steps)");
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
-      ->check(CLI::PositiveNumber);
+      ->check(particleCap());
   cmd->add_option("--record", o.record, "1: keep every frame in memory so S can write them; 0: do not")
       ->check(CLI::Range(0, 1))
       ->capture_default_str()

@@ -80,6 +80,19 @@ int runApp(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return root.exit(e);
   } catch (const CLI::ParseError& e) {
+    // "A subcommand is required" for `softsub bogus` hides the cause: name the word.
+    const auto subcommands = root.get_subcommands({});
+    bool anyParsed = false;
+    for (const CLI::App* sub : subcommands) anyParsed = anyParsed || sub->parsed();
+    for (std::size_t k = 1; !anyParsed && k < args.size(); ++k) {
+      if (args[k].starts_with("-")) continue;
+      if (args[k - 1] == "--threads") continue;  // its value
+      std::string names;
+      for (const CLI::App* sub : subcommands) names += (names.empty() ? "" : ", ") + sub->get_name();
+      printError(fmt::format("'{}' is not a command (allowed: {})", args[k], names));
+      fmt::print(stderr, "Run 'softsub --help' for usage.\n");
+      return code(ExitCode::BadInput);
+    }
     printError(e.what());
     fmt::print(stderr, "Run 'softsub --help' or 'softsub COMMAND --help' for usage.\n");
     return code(ExitCode::BadInput);

@@ -25,4 +25,6 @@ CLI::Validator finiteNonNegative() {
   return finiteNumberIn(0.0, std::numeric_limits<double>::max(), "a finite number >= 0");
 }
 
+CLI::Validator particleCap() { return finiteNumberIn(1.0, 1.8e19, "a whole number >= 1"); }
+
 }  // namespace softsub::app

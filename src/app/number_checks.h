@@ -15,4 +15,8 @@ namespace softsub::app {
 /// A finite number >= 0.
 [[nodiscard]] CLI::Validator finiteNonNegative();
 
+/// A particle count cap: >= 1 ("0 is out of range (allowed: a whole number >= 1)", not
+/// CLI::PositiveNumber's range up to the largest double written out in 309 digits).
+[[nodiscard]] CLI::Validator particleCap();
+
 }  // namespace softsub::app

@@ -851,7 +851,7 @@ class SceneReader {
     const std::uint64_t cap = cx_.options.maxParticles;
     std::uint64_t total = 0;
     const auto count = [&] {
-      return total == UINT64_MAX ? std::string("more than 18446744073709551614")
+      return total == UINT64_MAX ? std::string("over 10^19")
                                  : std::to_string(total);
     };
     std::size_t crossing = scene_.fluids.size();

@@ -138,6 +138,35 @@ TEST(Cli, SpeedLimitMustBeAFiniteNumber) {
   EXPECT_EQ(runSoftsub("run --frames 0 --formats none --speed-limit 0 " + quote(scene), tmp.path()).code, 0);
 }
 
+// A word that is no command is named as such (CLI11 alone says "A subcommand is
+// required"), also after --threads and its value.
+TEST(Cli, AnUnknownCommandIsNamedWithTheCommandsThatExist) {
+  TempDir tmp;
+  for (const std::string args : {"bogus", "--threads 2 bogus", "bogus --threads 1"}) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find("error: 'bogus' is not a command (allowed: run, info, fill, schema, render, view, mesh, bench)"),
+              std::string::npos)
+        << args << ": " << r.err;
+  }
+  EXPECT_NE(runSoftsub("", tmp.path()).err.find("A subcommand is required"), std::string::npos);
+}
+
+// A particle cap below 1 says what is allowed in words (it printed the range up to the
+// largest double, 309 digits).
+TEST(Cli, AParticleCapBelowOneSaysWhatIsAllowed) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  for (const std::string command : {"run", "render --out r", "view"}) {
+    const RunResult r = runSoftsub(command + " --max-particles 0 " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << command;
+    EXPECT_NE(r.err.find("error: --max-particles: 0 is out of range (allowed: a whole number >= 1)"), std::string::npos)
+        << command << ": " << r.err;
+    EXPECT_LT(r.err.size(), 300u) << r.err;
+  }
+  EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"});
+}
+
 // The ends of the ranges are allowed: --frames 0 writes only the initial state.
 TEST(Cli, OverridesAtTheEndsOfTheirRangesAreAccepted) {
   TempDir tmp;
