@@ -124,14 +124,33 @@ TEST(Resume, KilledAtRandomMomentsEveryFinishedFrameIsValidAndResumeMatches) {
   std::uniform_real_distribution<double> when(0.0, 1.1 * seconds);
   int kills = 0, midWrite = 0, beforeAnyFrame = 0;
   // At least 20 kills, and on until one has landed in the middle of a write (a
-  // temporary file on disk): each kill lands there with a chance of about 1 in 5.
+  // temporary file on disk). A kill at a random moment lands there with a chance of
+  // about 1 in 5 in a release build, but far less under the sanitizers, whose
+  // simulation is slowed more than its writes (once 0 in 80). So every fourth kill
+  // waits for a temporary file to appear instead, then freezes the process at once.
   for (int attempt = 0; attempt < 80 && (kills < 20 || midWrite == 0); ++attempt) {
     const fs::path out = tmp / fmt::format("k{}", attempt);
     std::vector<std::string> a = args;
     a.push_back(out.string());
+    const auto launched = std::chrono::steady_clock::now();
     const int pid = spawnSoftsub(a, tmp / "err");
     ASSERT_GT(pid, 0);
-    std::this_thread::sleep_for(std::chrono::duration<double>(when(rng)));
+    const double wait = when(rng);
+    // Read while the process writes: a file renamed away mid-listing may throw.
+    const auto sawTemporary = [&out] {
+      try {
+        return hasTemporaries(out);
+      } catch (const fs::filesystem_error&) {
+        return false;
+      }
+    };
+    if (attempt % 4 == 3) {
+      while (!sawTemporary() &&
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - launched).count() < 1.1 * seconds) {
+      }
+    } else {
+      std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+    }
     // Frozen first, so what is on disk is what the kill leaves.
     ::kill(pid, SIGSTOP);
     const bool tmpOnDisk = hasTemporaries(out);
