@@ -1,13 +1,11 @@
 #include "surface_options.h"
 
-#include <cmath>
-#include <cstdlib>
-
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "number_checks.h"
+#include "surface/surface_writer.h"
 
 namespace softsub::app {
 
@@ -51,16 +49,13 @@ void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot&
                        fmt::format("ParticleSize >= {:g} with surfaces, or --voxel-size {:g} or more",
                                    2.0 * surface::kMinVoxelSize, least));
     const double reach = surface::gridReach(voxel);
-    for (std::size_t i = 0; i < f.count(); ++i) {
+    if (const std::size_t i = surface::firstBeyondReach(f, reach); i < f.count()) {
       const float* p = &f.positions[3 * i];
-      for (int k = 0; k < 3; ++k)
-        if (std::isfinite(p[k]) && std::abs(double(p[k])) > reach)
-          throw InputError(
-              {source, 0, fmt::format("Fluid '{}'/Particles", f.name)},
-              fmt::format("particle id {} at ({:g}, {:g}, {:g}) is too far from the origin for the surfaces' voxel "
-                          "grid (2^30 voxels of {:g})",
-                          f.ids[i], p[0], p[1], p[2], voxel),
-              fmt::format("|x|, |y|, |z| <= {:g} with surfaces; or a larger --voxel-size", reach));
+      throw InputError({source, 0, fmt::format("Fluid '{}'/Particles", f.name)},
+                       fmt::format("particle id {} at ({:g}, {:g}, {:g}) is too far from the origin for the surfaces' "
+                                   "voxel grid (2^30 voxels of {:g})",
+                                   f.ids[i], p[0], p[1], p[2], voxel),
+                       fmt::format("|x|, |y|, |z| <= {:g} with surfaces; or a larger --voxel-size", reach));
     }
   }
 }

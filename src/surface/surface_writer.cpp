@@ -54,20 +54,26 @@ cache::ObjectMesh toObjectMesh(const SurfaceMesh& mesh, const std::string& name)
 SurfaceWriter::SurfaceWriter(std::filesystem::path outputDir, bool mesh, bool vdb, SurfaceSettings settings)
     : dir_(std::move(outputDir)), mesh_(mesh), vdb_(vdb), settings_(settings) {}
 
+std::size_t firstBeyondReach(const FluidSnapshot& fluid, double reach) {
+  for (std::size_t i = 0; i < fluid.count(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const float x = fluid.positions[3 * i + static_cast<std::size_t>(k)];
+      if (std::isfinite(x) && std::abs(double(x)) > reach) return i;
+    }
+  return fluid.count();
+}
+
 void checkGridReach(const FrameSnapshot& frame, const SurfaceSettings& settings) {
   for (const FluidSnapshot& fluid : frame.fluids) {
     const double voxel = voxelSizeFor(fluid.particleSize, settings);
     const double reach = gridReach(voxel);
-    for (std::size_t i = 0; i < fluid.count(); ++i) {
+    if (const std::size_t i = firstBeyondReach(fluid, reach); i < fluid.count()) {
       const float* p = &fluid.positions[3 * i];
-      bool beyond = false;
-      for (int k = 0; k < 3; ++k) beyond = beyond || (std::isfinite(p[k]) && std::abs(double(p[k])) > reach);
-      if (beyond)
-        throw BlowUpError(fmt::format(
-            "frame {}: fluid '{}', particle id {} is at ({:g}, {:g}, {:g}), too far from the origin for the "
-            "surface's voxel grid (|x|, |y|, |z| <= {:g}: 2^30 voxels of {:g}); keep the particles in with an "
-            "<Environment>, or give a larger --voxel-size",
-            frame.frame, fluid.name, fluid.ids[i], p[0], p[1], p[2], reach, voxel));
+      throw BlowUpError(fmt::format(
+          "frame {}: fluid '{}', particle id {} is at ({:g}, {:g}, {:g}), too far from the origin for the "
+          "surface's voxel grid (|x|, |y|, |z| <= {:g}: 2^30 voxels of {:g}); keep the particles in with an "
+          "<Environment>, or give a larger --voxel-size",
+          frame.frame, fluid.name, fluid.ids[i], p[0], p[1], p[2], reach, voxel));
     }
   }
 }

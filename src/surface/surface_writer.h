@@ -23,6 +23,10 @@ namespace softsub::surface {
 /// shortest decimals that read back as the same floats.
 [[nodiscard]] cache::ObjectMesh toObjectMesh(const SurfaceMesh& mesh, const std::string& name);
 
+/// The first particle of `fluid` with a finite coordinate beyond `reach` (gridReach) on
+/// some axis, or fluid.count() when there is none.
+[[nodiscard]] std::size_t firstBeyondReach(const FluidSnapshot& fluid, double reach);
+
 /// Throws softsub::BlowUpError naming the frame, the fluid, the particle and its position
 /// when a (finite) particle of `frame` is beyond gridReach of its fluid's voxel: a particle
 /// that flew that far cannot be meshed (the simulation keeps it; its surface cannot).
