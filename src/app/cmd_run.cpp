@@ -109,6 +109,25 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
 
 bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
 
+/// The names that become parts of the output files' names, checked before anything is
+/// created: the scene's (every file of the run, the preview), the fluids' (PDC files,
+/// surfaces) and the objects' (their OBJ files beside the .sim files). The rule knows
+/// names, not files: an error names the scene file they come from.
+void checkOutputNames(const LoadedScene& loaded, const std::string& sceneFile, const cache::Formats& formats,
+                      bool preview) {
+  try {
+    if (anyFormat(formats) || preview) cache::checkFileNamePart(loaded.name, "scene name");
+    if (formats.pdc || formats.mesh || formats.vdb)
+      for (const scene::FluidDesc& f : loaded.desc.fluids) cache::checkFileNamePart(f.name, "Fluid/Name");
+    if (formats.sim)
+      for (const scene::ObjectDesc& obj : loaded.desc.objects)
+        cache::checkFileNamePart(obj.name, "Object/Name");
+  } catch (const InputError& e) {
+    if (!e.where().file.empty()) throw;
+    throw InputError({sceneFile, 0, e.where().element}, e.problem(), e.allowed());
+  }
+}
+
 /// A hash of everything that decides a run's outputs except how many frames it runs:
 /// the scene after the overrides, the simulation's starting state (fills placed, bodies'
 /// particles where their bodies put them, the bodies' states), the objects' meshes as
@@ -210,14 +229,12 @@ int runCommand(const RunOptions& o) {
   const cache::Formats formats = checkCommandLine(o);
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
-  if (formats.pdc || formats.mesh || formats.vdb)
-    for (const scene::FluidDesc& f : loaded.desc.fluids) cache::checkFileNamePart(f.name, "Fluid/Name");
+  const std::string sceneFile = o.scene.empty() ? loaded.name + ".scene" : o.scene;
+  checkOutputNames(loaded, sceneFile, formats, o.preview);
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
 
-  if (formats.sim)
-    for (const scene::ObjectDesc& obj : loaded.desc.objects) cache::checkFileNamePart(obj.name, "Object/Name");
   if (o.resume && !anyFormat(formats))
     throw InputError({"command line", 0, "--resume"}, "there is nothing to resume: this run writes no files",
                      "--resume with at least one output format");
@@ -234,15 +251,13 @@ int runCommand(const RunOptions& o) {
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
                      "add mesh or vdb to --formats, or leave them out");
-  if (formats.mesh || formats.vdb)
-    checkSurfaceOptions(o.surface, sim.snapshot(), o.scene.empty() ? loaded.name + ".scene" : o.scene);
+  if (formats.mesh || formats.vdb) checkSurfaceOptions(o.surface, sim.snapshot(), sceneFile);
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets nothing but errors.
   const bool chatty = stderrIsTerminal() && !o.quiet;
   if (chatty) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
-    for (const std::string& w : compiled.warnings)
-      fmt::print(stderr, "warning: {}: {}\n", o.scene.empty() ? loaded.name + ".scene" : o.scene, w);
+    for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", sceneFile, w);
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
@@ -269,17 +284,21 @@ int runCommand(const RunOptions& o) {
     if (resumed.frame < 0) forgetEarlierRun(outDir, loaded.name);
   }
 
-  cache::FrameWriter writer(outDir, loaded.name, formats);
-  if (resumed.frame < 0) writer.setObjectMeshes(std::move(meshes));  // frame 0 wrote them
+  // Only a run that writes cache files has a writer: its name rule is for them.
+  std::optional<cache::FrameWriter> writer;
+  if (formats.sim || formats.pdc || formats.ply) {
+    writer.emplace(outDir, loaded.name, formats);
+    if (resumed.frame < 0) writer->setObjectMeshes(std::move(meshes));  // frame 0 wrote them
+  }
   // The surfaces after the cache files: a frame's mesh/ and vdb/ files come after its .sim.
   surface::SurfaceWriter surfaces(outDir, formats.mesh, formats.vdb, o.surface);
   LastFrame done;
   done.last = resumed.frame;
   std::vector<FrameObserver*> observers;
   std::vector<WrittenFiles> written;
-  if (formats.sim || formats.pdc || formats.ply) {
-    observers.push_back(&writer);
-    written.emplace_back([&writer] { return writer.lastWritten(); });
+  if (writer) {
+    observers.push_back(&*writer);
+    written.emplace_back([&writer] { return writer->lastWritten(); });
   }
   if (formats.mesh || formats.vdb) {
     observers.push_back(&surfaces);

@@ -4,11 +4,37 @@
 
 namespace softsub {
 
+namespace {
+
+/// A file name as an error message shows it: control characters escaped (\t, \n, \r,
+/// \xHH), so that the message stays one line and an odd name can be told and typed.
+std::string fileText(std::string_view file) {
+  std::string s;
+  for (const char c : file) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\t') {
+      s += "\\t";
+    } else if (c == '\n') {
+      s += "\\n";
+    } else if (c == '\r') {
+      s += "\\r";
+    } else if (u < 0x20 || u == 0x7f) {
+      constexpr std::string_view kHex = "0123456789abcdef";
+      s.append("\\x").append(1, kHex[u >> 4]).append(1, kHex[u & 0xf]);
+    } else {
+      s += c;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
 std::string formatInputError(const InputLocation& where, const std::string& problem,
                              const std::string& allowed) {
   std::string s;
   s.reserve(where.file.size() + where.element.size() + problem.size() + allowed.size() + 32);
-  s.append(where.file.empty() ? std::string_view("<input>") : std::string_view(where.file));
+  s.append(where.file.empty() ? std::string("<input>") : fileText(where.file));
   if (where.line > 0) s.append(":").append(std::to_string(where.line));
   s.append(": ");
   if (!where.element.empty()) s.append(where.element).append(": ");

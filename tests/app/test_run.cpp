@@ -268,5 +268,27 @@ TEST(Run, NamesOfTheLongestAllowedLengthWriteEveryFormat) {
   }
 }
 
+// The scene's name (its file name without .scene) names every output file; a tab in it
+// was refused as `<input>: scene name: ...`, without the file, once frame 0's folder was
+// being made. The error names the scene file (control characters escaped) before anything
+// is created; with nothing to write the name is no file's and the run goes on.
+TEST(Run, AnOutputNameFromTheSceneFileNameIsRefusedNamingTheFile) {
+  TempDir tmp;
+  const std::string name = "a\tb.scene";
+  fs::copy_file(examplesDir() / "two-fluids.scene", tmp / name);
+  const std::string expected =
+      "error: " + (tmp / "a\\tb.scene").string() + ": scene name: name 'a?b' cannot be used";
+  for (const std::string formats : {"all", "sim", "mesh", "none --preview"}) {
+    const RunResult r =
+        runSoftsub("run --frames 1 --formats " + formats + " --out o " + quote(tmp / name), tmp.path());
+    EXPECT_EQ(r.code, 2) << formats << ": " << r.err;
+    EXPECT_EQ(r.err.rfind(expected, 0), 0u) << formats << ": " << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "o")) << formats;
+  }
+  const RunResult none = runSoftsub("run --frames 1 --formats none --out o " + quote(tmp / name), tmp.path());
+  EXPECT_EQ(none.code, 0) << none.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+}
+
 }  // namespace
 }  // namespace softsub::apptest

@@ -19,6 +19,11 @@ TEST(InputError, OmitsWhatIsUnknown) {
   EXPECT_STREQ(InputError({"", 3, "X"}, "bad", "good").what(), "<input>:3: X: bad (allowed: good)");
 }
 
+TEST(InputError, EscapesControlCharactersInTheFileName) {
+  EXPECT_STREQ(InputError({"a\tb\n\x1b.scene", 2, "X"}, "bad").what(), "a\\tb\\n\\x1b.scene:2: X: bad");
+  EXPECT_EQ(InputError({"a\tb.scene", 2, "X"}, "bad").where().file, "a\tb.scene");  // kept as it is
+}
+
 TEST(ExitCodes, AreTheDocumentedValues) {
   EXPECT_EQ(static_cast<int>(ExitCode::BadInput), 2);
   EXPECT_EQ(static_cast<int>(ExitCode::IoFailure), 3);
