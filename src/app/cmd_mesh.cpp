@@ -28,10 +28,19 @@ CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
 }
 
 int meshCommand(const MeshOptions& o) {
-  const cache::Formats formats = cache::parseFormats(o.formats);
+  constexpr const char* kSurfaceFormats = "mesh, vdb or mesh,vdb";
+  // run's parser, with what mesh takes as the rule: run's own list would name formats
+  // that mesh refuses.
+  const cache::Formats formats = [&] {
+    try {
+      return cache::parseFormats(o.formats);
+    } catch (const InputError& e) {
+      throw InputError(e.where(), e.problem(), kSurfaceFormats);
+    }
+  }();
   if (formats.sim || formats.pdc || formats.ply || !(formats.mesh || formats.vdb))
-    throw InputError({"command line", 0, "--formats"}, fmt::format("'{}' is not a surface format list", o.formats),
-                     "mesh, vdb or mesh,vdb");
+    throw InputError({"command line", 0, "--formats"},
+                     fmt::format("'{}' is not a surface format list", o.formats), kSurfaceFormats);
   const session::Playback playback(o.folder);
   checkSurfaceOptions(o.surface, playback.load(0), o.folder);
   const surface::SurfaceSettings& settings = o.surface;

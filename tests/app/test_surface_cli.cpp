@@ -272,7 +272,15 @@ TEST(SurfaceCli, MeshDrawsProgressAndASummaryAtATerminal) {
 TEST(SurfaceCli, MeshRefusesNonSurfaceFormatsAndMissingFrames) {
   TempDir tmp;
   fs::create_directories(tmp / "empty");
-  EXPECT_EQ(runSoftsub("mesh --formats sim " + quote(tmp / "empty"), tmp.path()).code, 2);
+  // Every bad list, the ones run's parser refuses too (empty, unknown, "none,"), lists
+  // what mesh takes, never run's formats.
+  for (const std::string bad : {"sim", "''", "xyz", "none", "none,", "mesh,", "all"}) {
+    const RunResult r = runSoftsub("mesh --formats " + bad + " " + quote(tmp / "empty"), tmp.path());
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("error: command line: --formats: ", 0), 0u) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("(allowed: mesh, vdb or mesh,vdb)\n"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_EQ(r.err.find("pdc"), std::string::npos) << bad << ": " << r.err;
+  }
   const RunResult r = runSoftsub("mesh " + quote(tmp / "empty"), tmp.path());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_TRUE(listEntries(tmp / "empty").empty());
