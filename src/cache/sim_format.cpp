@@ -90,8 +90,14 @@ class SimReader {
 
   SimFile read() {
     pugi::xml_document doc;
+    // parse_fragment keeps text outside the root, parse_pi, parse_declaration and
+    // parse_doctype what may follow it (pugixml drops them all otherwise): readRoot
+    // refuses anything but comments and white space after the root, and text before it.
     const pugi::xml_parse_result parsed =
-        doc.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
+        doc.load_buffer(text_.data(), text_.size(),
+                        pugi::parse_default | pugi::parse_fragment | pugi::parse_pi |
+                            pugi::parse_declaration | pugi::parse_doctype,
+                        pugi::encoding_utf8);
     if (!parsed) {
       fail(parsed.offset, "", fmt::format("malformed XML: {}", parsed.description()),
            "a well-formed XML document");
@@ -126,9 +132,25 @@ class SimReader {
       fail(root ? root.offset_debug() : 0, root ? root.name() : "",
            "the root element is not <Simulation>", "<Simulation version=\"1\" ...>");
     }
-    for (pugi::xml_node n = root.next_sibling(); n; n = n.next_sibling()) {
-      if (n.type() == pugi::node_element)
+    bool afterRoot = false;
+    for (pugi::xml_node n = doc.first_child(); n; n = n.next_sibling()) {
+      if (n == root) {
+        afterRoot = true;
+      } else if (n.type() == pugi::node_element) {
         fail(n, n.name(), "second root element", "one <Simulation>");
+      } else if (n.type() == pugi::node_pcdata || n.type() == pugi::node_cdata) {
+        // At its first character that is not white space (the node starts before it).
+        const std::size_t at =
+            text_.find_first_not_of(kWhitespace, static_cast<std::size_t>(n.offset_debug()));
+        fail(static_cast<std::ptrdiff_t>(at), "Simulation", "text outside the root element",
+             "one <Simulation> element and no text around it");
+      } else if (afterRoot) {
+        const char* what = n.type() == pugi::node_pi            ? "a processing instruction"
+                           : n.type() == pugi::node_declaration ? "an XML declaration"
+                                                                : "a DOCTYPE declaration";
+        fail(n, "Simulation", fmt::format("{} after the root element", what),
+             "nothing but comments and white space after </Simulation>");
+      }
     }
     bool haveVersion = false, haveFrame = false, haveTime = false;
     for (const pugi::xml_attribute& a : root.attributes()) {

@@ -1,4 +1,5 @@
 // `softsub info` on each kind of file it knows, and on one it does not.
+#include <algorithm>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -106,6 +107,54 @@ TEST(Info, MissingOrBrokenFiles) {
   expectContains(broken.err, "broken.sim");
   std::ofstream(tmp / "broken.pdc") << "PDC";
   EXPECT_EQ(runSoftsub("info broken.pdc", tmp.path()).code, 2);
+}
+
+// pugixml stops at the root's end tag and dropped whatever followed it: a .sim file with
+// junk after </Simulation> (text, a CDATA section, a processing instruction, a second
+// declaration) read as a good frame. It is refused at its line, as the scene reader
+// refuses the same after </Scene>; comments and white space stay fine in both.
+TEST(Info, JunkAfterTheRootElementIsRefusedCommentsAndWhiteSpaceAreNot) {
+  TempDir tmp;
+  const std::string sim = readFile(runTwoFluids(tmp) / "two-fluids.0002.sim");
+  const std::string scene = readFile(examplesDir() / "two-fluids.scene");
+  const auto lineAfter = [](const std::string& text) {
+    return std::to_string(1 + std::count(text.begin(), text.end(), '\n') + 1);
+  };
+  struct Case {
+    std::string tail;
+    std::string simProblem;
+    std::string sceneProblem;
+  };
+  const std::vector<Case> junk = {
+      {"\njunk\n", "Simulation: text outside the root element", "Scene: text outside the root element"},
+      {"\n<!-- fine --> junk\n", "Simulation: text outside the root element",
+       "Scene: text outside the root element"},
+      {"\n&amp;\n", "Simulation: text outside the root element", "Scene: text outside the root element"},
+      {"\n<![CDATA[x]]>\n", "Simulation: text outside the root element",
+       "a CDATA section after the root element"},
+      {"\n<?pi x?>\n", "Simulation: a processing instruction after the root element",
+       "a processing instruction after the root element"},
+      {"\n<?xml version=\"1.0\"?>\n", "Simulation: an XML declaration after the root element",
+       "a processing instruction after the root element"},
+  };
+  for (const Case& c : junk) {
+    std::ofstream(tmp / "junk.sim", std::ios::binary) << sim << c.tail;
+    const RunResult r = runSoftsub("info junk.sim", tmp.path());
+    EXPECT_EQ(r.code, 2) << c.tail << r.out;
+    expectContains(r.err, "error: junk.sim:" + lineAfter(sim) + ": " + c.simProblem);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    std::ofstream(tmp / "junk.scene", std::ios::binary) << scene << c.tail;
+    const RunResult s = runSoftsub("info junk.scene", tmp.path());
+    EXPECT_EQ(s.code, 2) << c.tail << s.out;
+    expectContains(s.err, "error: junk.scene:" + lineAfter(scene) + ": ");
+    expectContains(s.err, c.sceneProblem);
+  }
+  std::ofstream(tmp / "fine.sim", std::ios::binary) << sim << "\n<!-- a comment -->\n  \n\t\n";
+  const RunResult fine = runSoftsub("info fine.sim", tmp.path());
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  expectContains(fine.out, "frame 2, time 0.0833333 s, 2 fluids, 1,728 particles");
+  std::ofstream(tmp / "fine.scene", std::ios::binary) << scene << "\n<!-- a comment -->\n  \n\t\n";
+  EXPECT_EQ(runSoftsub("info fine.scene", tmp.path()).code, 0);
 }
 
 }  // namespace
