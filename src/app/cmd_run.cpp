@@ -88,12 +88,19 @@ void checkOverride(std::string_view option, std::string_view tag, const std::opt
                    scene::allowedText(*info));
 }
 
+bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
+
 /// Everything `run` checks before it reads the scene: the command line itself.
 cache::Formats checkCommandLine(const RunOptions& o) {
   checkOverride("--frames", "Frames", o.frames);
   checkOverride("--substeps", "Substeps", o.substeps);
-  const cache::Formats formats = cache::parseFormats(o.formats);
-  if (o.record == 0) return {false, false, false, false, false};
+  cache::Formats formats = cache::parseFormats(o.formats);
+  if (o.record == 0) formats = {false, false, false, false, false};
+  // A run that writes nothing leaves no frames to continue from, nor continues any: a
+  // usage error, not a whole simulation that quietly writes nothing.
+  if (o.resume && !anyFormat(formats))
+    throw InputError({"command line", 0, "--resume"}, "there is nothing to resume: this run writes no files",
+                     "--resume with at least one output format (not --formats none or -record 0)");
   return formats;
 }
 
@@ -106,8 +113,6 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
     desc.simulation.integrator = static_cast<scene::Integrator>(it - std::begin(names));
   }
 }
-
-bool anyFormat(const cache::Formats& f) { return f.sim || f.pdc || f.ply || f.mesh || f.vdb; }
 
 /// The names that become parts of the output files' names, checked before anything is
 /// created: the scene's (every file of the run, the preview), the fluids' (PDC files,
@@ -181,8 +186,8 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                 "substeps, travel");
   run->add_flag("--resume", o.resume,
                 "Continue a run that stopped (killed, interrupted, failed) after its last complete frame; the "
-                "outputs are byte-identical to an uninterrupted run. Starts at frame 0 when there is nothing to "
-                "resume");
+                "outputs are byte-identical to an uninterrupted run. Starts at frame 0 when there is nothing "
+                "to resume; needs an output format (not --formats none)");
   run->add_option("--checkpoint-every", o.checkpointEvery,
                   "Write the solver state every K frames for --resume (the two newest are kept); 0: never")
       ->check(CLI::Range(0, 1000000))
@@ -207,8 +212,9 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
       ->check(particleCap());
   run->add_flag("--print-scene", o.printScene, "Print the embedded default scene and exit");
   run->add_flag("--preview", o.preview,
-                "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed)");
-  run->add_option("--record", o.record, "0: write nothing (same as --formats none); 1: write")
+                "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed; "
+                "also with --formats none)");
+  run->add_option("--record", o.record, "0: write no caches (same as --formats none); 1: write")
       ->check(CLI::Range(0, 1))
       ->group(kSeedGroup);
   run->add_option("--stop-recording-at", o.stopRecordingAt,
@@ -235,9 +241,6 @@ int runCommand(const RunOptions& o) {
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
 
-  if (o.resume && !anyFormat(formats))
-    throw InputError({"command line", 0, "--resume"}, "there is nothing to resume: this run writes no files",
-                     "--resume with at least one output format");
   scene::Compiled compiled = scene::compile(loaded.desc);
   compiled.model.adaptiveSubsteps = o.adaptive;
   compiled.model.maxSubsteps = o.maxSubsteps;
@@ -349,8 +352,10 @@ int runCommand(const RunOptions& o) {
     // warning, not a failed run.
     const std::filesystem::path picture = outDir / (loaded.name + ".preview.png");
     try {
-      cache::ensureDirectory(outDir);
+      // The folder once the picture can be drawn: with --formats none it holds nothing
+      // else, and a system that cannot draw leaves no empty folder.
       PictureMaker maker(*view, kPreviewWidth, kPreviewHeight);
+      cache::ensureDirectory(outDir);
       maker.write(picture, sim.snapshot(), cameraOf(loaded.desc.camera));
       previewNote = ", preview: " + picture.string();
     } catch (const IoError& e) {

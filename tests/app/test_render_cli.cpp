@@ -398,5 +398,24 @@ TEST(RunPreview, WritesAPictureOfTheLastFrame) {
   expectFluidsWhereTheyProject(im, cameraOf(desc), last);
 }
 
+// --formats none writes no caches, and --preview still draws the picture it asks for:
+// the folder is made for the picture alone, and only once it can be drawn. A system that
+// cannot draw (here: no EGL vendor library) gets a warning and no empty folder, which it
+// used to get.
+TEST(RunPreview, WithFormatsNoneTheFolderHoldsThePictureAlone) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const std::string args = " run " + quote(scene) + " --frames 1 --formats none --preview -q --out ";
+  const RunResult r = runSoftsub(args + "o", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "o"), std::vector<std::string>{"two-fluids.preview.png"});
+  const RunResult cannot = runCommand(
+      "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent " + quote(softsubBinary()) + args + "p", tmp.path());
+  EXPECT_EQ(cannot.code, 0) << cannot.err;
+  if (cannot.err.find("warning: no preview picture: cannot draw off-screen") == std::string::npos)
+    GTEST_SKIP() << "this system draws without an EGL vendor library: " << cannot.err;
+  EXPECT_FALSE(fs::exists(tmp / "p"));
+}
+
 }  // namespace
 }  // namespace softsub::apptest

@@ -208,6 +208,29 @@ TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
   EXPECT_NE(none.err.find("--resume"), std::string::npos) << none.err;
 }
 
+// A run that writes nothing (--formats none, -record 0) has nothing to resume and makes
+// nothing to resume from: --resume with it is a usage error of the command line, refused
+// before the scene is read (a missing scene was exit 3, "cannot read"), and nothing on
+// disk changes.
+TEST(Resume, WithoutOutputsIsACommandLineErrorBeforeTheSceneIsRead) {
+  TempDir tmp;
+  const std::string base = "run -q " + scenePath("two-fluids.scene") + " --frames 1 --out o";
+  ASSERT_EQ(runSoftsub(base, tmp.path()).code, 0);
+  const Tree before = treeOf(tmp / "o");
+  for (const std::string nothing : {" --formats none", " -record 0", " --record 0 --formats sim"}) {
+    for (const std::string& scene : {scenePath("two-fluids.scene"), std::string("missing.scene")}) {
+      const RunResult r = runSoftsub("run " + scene + nothing + " --resume --out o", tmp.path());
+      EXPECT_EQ(r.code, 2) << nothing << " " << scene << ": " << r.err;
+      EXPECT_EQ(r.err.rfind(
+                    "error: command line: --resume: there is nothing to resume: this run writes no files", 0),
+                0u)
+          << r.err;
+      EXPECT_EQ(differences(before, treeOf(tmp / "o")), std::vector<std::string>{}) << nothing;
+    }
+  }
+  EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"o"});
+}
+
 TEST(Resume, AnEditedObjectMeshIsAnotherSetting) {
   TempDir tmp;
   const fs::path good = fs::path(SOFTSUB_SOURCE_DIR) / "tests/data/scenes/good";
