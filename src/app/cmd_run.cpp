@@ -210,7 +210,8 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--max-particles", o.maxParticles,
                   "Refuse scenes with more particles than this (default: the reader's limit)")
       ->check(particleCap());
-  run->add_flag("--print-scene", o.printScene, "Print the embedded default scene and exit");
+  run->add_flag("--print-scene", o.printScene,
+                "Print the scene's text (SCENE's, or the embedded default scene's without it) and exit");
   run->add_flag("--preview", o.preview,
                 "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed; "
                 "also with --formats none)");
@@ -228,7 +229,15 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
 
 int runCommand(const RunOptions& o) {
   if (o.printScene) {
-    std::fputs(defaultSceneText(), stdout);
+    // The scene this run would read: SCENE's text as it is, once it reads as a valid
+    // scene (the overrides are not applied), or the embedded default scene's.
+    if (o.scene.empty()) {
+      std::fputs(defaultSceneText(), stdout);
+    } else {
+      (void)loadScene(o.scene, o.maxParticles);
+      const std::string text = cache::readFileBytes(o.scene);
+      std::fwrite(text.data(), 1, text.size(), stdout);
+    }
     return static_cast<int>(ExitCode::Ok);
   }
   // Everything is checked before any folder or file is created.

@@ -23,7 +23,7 @@ struct RunOptions {
   std::string integrator;             ///< --integrator; empty: the scene's
   bool quiet = false;                 ///< --quiet: nothing on stderr but errors
   std::uint64_t maxParticles = 0;     ///< --max-particles; 0: the reader's default limit
-  bool printScene = false;            ///< --print-scene: print the default scene and exit
+  bool printScene = false;            ///< --print-scene: print SCENE's text (or the default's) and exit
   int record = -1;                    ///< -record 0|1; 0 means --formats none
   std::int64_t stopRecordingAt = -1;  ///< -stopRecordingAt F; -1: no limit
   std::string drawPerFrame;           ///< -drawPerFrame X; accepted and ignored (viewer)

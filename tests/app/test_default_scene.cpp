@@ -1,5 +1,7 @@
 // The embedded default scene: what `run --print-scene` prints and what `run` with no
 // scene simulates.
+#include <fstream>
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -18,6 +20,31 @@ TEST(DefaultScene, PrintSceneIsTheExampleFileAndParses) {
   EXPECT_EQ(r.out, readFile(examplesDir() / "softsub-demo.scene"));
   EXPECT_NO_THROW((void)scene::readSceneText(r.out, "printed.scene"));
   EXPECT_TRUE(listEntries(tmp.path()).empty());
+}
+
+// `run SCENE --print-scene` printed the embedded default scene, SCENE ignored. It prints
+// SCENE's own text, byte for byte, once SCENE reads as a valid scene; a bad or missing
+// SCENE is refused as a run refuses it. Nothing is written.
+TEST(DefaultScene, PrintSceneWithASceneIsThatScenesText) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  for (const std::string& args :
+       {"run " + quote(scene) + " --print-scene", "run --print-scene -f " + quote(scene),
+        "run --print-scene --frames 2 " + quote(scene)}) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    ASSERT_EQ(r.code, 0) << args << ": " << r.err;
+    EXPECT_EQ(r.out, readFile(scene)) << args;
+  }
+  std::ofstream(tmp / "bad.scene")
+      << "<Scene version=\"1\"><Simulation><Frames>-3</Frames></Simulation></Scene>\n";
+  const RunResult bad = runSoftsub("run bad.scene --print-scene", tmp.path());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_EQ(bad.err.rfind("error: bad.scene:1: Simulation/Frames: -3 is out of range", 0), 0u) << bad.err;
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
+  const RunResult missing = runSoftsub("run missing.scene --print-scene", tmp.path());
+  EXPECT_EQ(missing.code, 3) << missing.err;
+  EXPECT_TRUE(missing.out.empty()) << missing.out;
+  EXPECT_EQ(listEntries(tmp.path()), (std::vector<std::string>{"bad.scene", "two-fluids.scene"}));
 }
 
 TEST(DefaultScene, TwoFluidsOfClearlyDifferentViscosityAboutTenThousandParticles) {
