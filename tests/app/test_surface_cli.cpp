@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -121,6 +122,25 @@ std::string oneFluid(const std::string& particleSize, const std::string& particl
          "</Particles></Fluid></Scene>\n";
 }
 
+/// A scene the surfaces cannot take is refused before anything is made, by `run` with
+/// each list of `formats` (exit 2, the message holds `problem` and `(allowed: <allowed>)`)
+/// and by `render --surface` (exit 2); neither leaves its output folder.
+void expectSurfacesRefusedFirst(const TempDir& tmp, const fs::path& scene,
+                                const std::vector<std::string>& formats, const std::string& problem,
+                                const std::string& allowed) {
+  SCOPED_TRACE(scene.filename().string());
+  for (const std::string& f : formats) {
+    const RunResult r = runSoftsub("run --formats " + f + " --out o " + quote(scene), tmp.path());
+    EXPECT_EQ(r.code, 2) << f << ": " << r.err;
+    EXPECT_NE(r.err.find(problem), std::string::npos) << f << ": " << r.err;
+    EXPECT_NE(r.err.find("(allowed: " + allowed + ")"), std::string::npos) << f << ": " << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "o")) << f;
+  }
+  const RunResult render = runSoftsub("render --surface --frames 0 --out r " + quote(scene), tmp.path());
+  EXPECT_EQ(render.code, 2) << render.err;
+  EXPECT_FALSE(fs::exists(tmp / "r"));
+}
+
 // The default voxel is half the particle size; below 2e-5 OpenVDB refuses the grid's
 // transform ("internal error: ArithmeticError", exit 1, empty mesh/ and vdb/ folders).
 // It is now refused before anything is made, naming the particle size and the way out.
@@ -128,24 +148,14 @@ TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
   TempDir tmp;
   const fs::path scene = tmp / "tiny.scene";
   writeText(scene, oneFluid("1e-5", "0 0 0  1e-5 0 0"));
-  for (const std::string formats : {"mesh", "vdb", "sim,mesh,vdb"}) {
-    const RunResult r = runSoftsub("run --formats " + formats + " --out o " + quote(scene), tmp.path());
-    EXPECT_EQ(r.code, 2) << formats << ": " << r.err;
-    EXPECT_NE(r.err.find("tiny.scene: Fluid 'a'/ParticleSize: 1e-05 is too small for surfaces"), std::string::npos)
-        << r.err;
-    EXPECT_NE(r.err.find("(allowed: ParticleSize >= 4e-05 with surfaces, or --voxel-size 2e-05 or more)"),
-              std::string::npos)
-        << r.err;
-    EXPECT_FALSE(fs::exists(tmp / "o")) << formats;
-  }
+  expectSurfacesRefusedFirst(tmp, scene, {"mesh", "vdb", "sim,mesh,vdb"},
+                             "tiny.scene: Fluid 'a'/ParticleSize: 1e-05 is too small for surfaces",
+                             "ParticleSize >= 4e-05 with surfaces, or --voxel-size 2e-05 or more");
   const RunResult voxel = runSoftsub("run --formats mesh --voxel-size 1e-5 --out o " + quote(scene), tmp.path());
   EXPECT_EQ(voxel.code, 2) << voxel.err;
   EXPECT_NE(voxel.err.find("--voxel-size: 1e-05 is too small for fluid 'a'"), std::string::npos) << voxel.err;
   EXPECT_NE(voxel.err.find("never below 2e-05"), std::string::npos) << voxel.err;
   EXPECT_FALSE(fs::exists(tmp / "o"));
-  const RunResult render = runSoftsub("render --surface --frames 0 --out r " + quote(scene), tmp.path());
-  EXPECT_EQ(render.code, 2) << render.err;
-  EXPECT_FALSE(fs::exists(tmp / "r"));
   // Without surfaces the particle size is fine, and a voxel of 2e-5 meshes it.
   EXPECT_EQ(runSoftsub("run --formats sim --out s " + quote(scene), tmp.path()).code, 0);
   const RunResult meshed = runSoftsub("run --formats mesh --voxel-size 2e-5 --out m " + quote(scene), tmp.path());
@@ -160,20 +170,10 @@ TEST(SurfaceCli, AParticleBeyondTheGridsReachInTheSceneIsRefusedFirst) {
   TempDir tmp;
   const fs::path scene = tmp / "far.scene";
   writeText(scene, oneFluid("1", "0 1 0  1e12 0 0"));
-  for (const std::string formats : {"sim,mesh", "vdb"}) {
-    const RunResult r = runSoftsub("run --formats " + formats + " --out o " + quote(scene), tmp.path());
-    EXPECT_EQ(r.code, 2) << formats << ": " << r.err;
-    EXPECT_NE(r.err.find("far.scene: Fluid 'a'/Particles: particle id 1 at (1e+12, 0, 0) is too far from the origin"),
-              std::string::npos)
-        << r.err;
-    EXPECT_NE(r.err.find("(allowed: |x|, |y|, |z| <= 5.36871e+08 with surfaces; or a larger --voxel-size)"),
-              std::string::npos)
-        << r.err;
-    EXPECT_FALSE(fs::exists(tmp / "o")) << formats;
-  }
-  const RunResult render = runSoftsub("render --surface --frames 0 --out r " + quote(scene), tmp.path());
-  EXPECT_EQ(render.code, 2) << render.err;
-  EXPECT_FALSE(fs::exists(tmp / "r"));
+  expectSurfacesRefusedFirst(
+      tmp, scene, {"sim,mesh", "vdb"},
+      "far.scene: Fluid 'a'/Particles: particle id 1 at (1e+12, 0, 0) is too far from the origin",
+      "|x|, |y|, |z| <= 5.36871e+08 with surfaces; or a larger --voxel-size");
   // A coarser voxel reaches farther.
   EXPECT_EQ(runSoftsub("run --frames 0 --formats mesh --voxel-size 2000 --out c " + quote(scene), tmp.path()).code, 0);
 }
