@@ -30,6 +30,17 @@ void forEachSlot(std::size_t n, Fn&& fn) {
   });
 }
 
+// The same over ranges of slots: fn(begin, end).
+template <class Fn>
+void forEachRange(std::size_t n, Fn&& fn) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kBlock),
+                    [&](const tbb::blocked_range<std::size_t>& r) { fn(r.begin(), r.end()); });
+}
+
+// Short runs of slots that the per-particle stages test as one: a run where no particle
+// needs a stage's scalar work skips it after one vectorised test.
+constexpr std::size_t kRun = 32;
+
 // The two largest squared displacements (a NaN counts as infinite): maxima are exact, so
 // a parallel reduction gives the same pair whatever the split.
 struct Top2 {
@@ -48,12 +59,30 @@ struct Top2 {
     add(o.second);
   }
   // Adds the displacements of slots [b, e) from the reference positions (x of every
-  // slot, then y, then z).
+  // slot, then y, then z). Run by run: the squares into a buffer and their largest bit
+  // pattern, one vectorised loop; only a run with one above the second largest so far
+  // (as unsigned integers: any NaN, of either sign, counts as above) goes through add(),
+  // for which the others change nothing. The same pair as adding every slot.
   void addDisplacements(const ParticleStore& s, const float* ref, std::size_t b, std::size_t e) {
     const std::size_t n = s.size();
-    for (std::size_t i = b; i != e; ++i) {
-      const float dx = s.px[i] - ref[i], dy = s.py[i] - ref[n + i], dz = s.pz[i] - ref[2 * n + i];
-      add(dx * dx + dy * dy + dz * dz);
+    const float* __restrict px = s.px.data();
+    const float* __restrict py = s.py.data();
+    const float* __restrict pz = s.pz.data();
+    const float* __restrict rx = ref;
+    const float* __restrict ry = ref + n;
+    const float* __restrict rz = ref + 2 * n;
+    alignas(32) float d2[kRun];
+    for (std::size_t r = b; r < e; r += kRun) {
+      const std::size_t m = std::min(kRun, e - r);
+      std::uint32_t top = 0;
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t i = r + k;
+        const float dx = px[i] - rx[i], dy = py[i] - ry[i], dz = pz[i] - rz[i];
+        d2[k] = dx * dx + dy * dy + dz * dz;
+        top = std::max(top, std::bit_cast<std::uint32_t>(d2[k]));
+      }
+      if (top <= std::bit_cast<std::uint32_t>(second)) continue;
+      for (std::size_t k = 0; k < m; ++k) add(d2[k]);
     }
   }
 };
@@ -123,8 +152,16 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
       }
       wallLo_.push_back(lo);
       wallHi_.push_back(hi);
+      for (int a = 0; a < 3; ++a) {
+        gateLo_[a] = std::max(gateLo_[a], lo[a]);
+        gateHi_[a] = std::min(gateHi_[a], hi[a]);
+      }
     }
+    if (!box.closed) gateHi_[1] = INFINITY;  // no lid: nothing is stopped at the top
   }
+  uniformMass_ = std::all_of(model_.materials.begin(), model_.materials.end(), [&](const MaterialInfo& m) {
+    return m.inverseMass == model_.materials.front().inverseMass;
+  });
   if (model_.adaptiveSubsteps) {
     const int stable = assessStability(model_, &state_).minimumSubsteps;
     stableSubsteps_ = stable > 0 ? stable : model_.maxSubsteps;
@@ -257,19 +294,58 @@ struct Simulation::ParticleOps {
   float e, mu;           // the walls' restitution and friction
   const std::array<float, 3>* wallLo;
   const std::array<float, 3>* wallHi;
+  bool uniformMass;                    // every material has mats[0]'s inverse mass
+  std::array<float, 3> gateLo, gateHi;  // a centre inside these touches no wall, whatever its material
 
-  // v += (f / m + g) h
-  void kick(std::size_t i, float h) const {
-    const float im = mats[s.material[i]].inverseMass;
-    s.vx[i] += (s.f[i].x * im + gx) * h;
-    s.vy[i] += (s.f[i].y * im + gy) * h;
-    s.vz[i] += (s.f[i].z * im + gz) * h;
+  // v += (f / m + g) h for slots [from, to). Axis by axis through unaliased pointers, so that
+  // each loop vectorises (one loop over six arrays did not: too many alias checks); the
+  // inverse masses are gathered into a buffer first unless every material shares one.
+  void kicks(std::size_t from, std::size_t to, float h) const {
+    const float g[3] = {gx, gy, gz};
+    float* const v[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
+    const Force* const f = s.f.data();
+    alignas(32) float im[kRun];
+    for (std::size_t r = from; r < to; r += kRun) {
+      const std::size_t m = std::min(kRun, to - r);
+      if (uniformMass)
+        std::fill_n(im, m, mats[0].inverseMass);
+      else
+        for (std::size_t k = 0; k < m; ++k) im[k] = mats[s.material[r + k]].inverseMass;
+      kickAxis<&Force::x>(v[0] + r, f + r, im, g[0], h, m);
+      kickAxis<&Force::y>(v[1] + r, f + r, im, g[1], h, m);
+      kickAxis<&Force::z>(v[2] + r, f + r, im, g[2], h, m);
+    }
   }
-  // x += v dt
-  void drift(std::size_t i, float dt) const {
-    s.px[i] += s.vx[i] * dt;
-    s.py[i] += s.vy[i] * dt;
-    s.pz[i] += s.vz[i] * dt;
+  template <float Force::*kAxis>
+  static void kickAxis(float* __restrict v, const Force* __restrict f, const float* __restrict im, float g, float h,
+                       std::size_t m) {
+    for (std::size_t k = 0; k < m; ++k) v[k] += (f[k].*kAxis * im[k] + g) * h;
+  }
+  // x += v dt for slots [from, to), axis by axis as the kick.
+  void drifts(std::size_t from, std::size_t to, float dt) const {
+    driftAxis(s.px.data() + from, s.vx.data() + from, dt, to - from);
+    driftAxis(s.py.data() + from, s.vy.data() + from, dt, to - from);
+    driftAxis(s.pz.data() + from, s.vz.data() + from, dt, to - from);
+  }
+  static void driftAxis(float* __restrict p, const float* __restrict v, float dt, std::size_t m) {
+    for (std::size_t k = 0; k < m; ++k) p[k] += v[k] * dt;
+  }
+  // walls(i) for slots [from, to): run by run, a vectorised test against the bounds that
+  // hold for every material skips the runs where no centre is near a wall.
+  void wallsOf(std::size_t from, std::size_t to) const {
+    const float* const p[3] = {s.px.data(), s.py.data(), s.pz.data()};
+    for (std::size_t r = from; r < to; r += kRun) {
+      const std::size_t m = std::min(kRun, to - r);
+      std::uint32_t near = 0;
+      for (int a = 0; a < 3; ++a) near |= outside(p[a] + r, gateLo[a], gateHi[a], m);
+      if (near == 0) continue;
+      for (std::size_t i = r; i < r + m; ++i) walls(i);
+    }
+  }
+  static std::uint32_t outside(const float* __restrict p, float lo, float hi, std::size_t m) {
+    std::uint32_t any = 0;
+    for (std::size_t k = 0; k < m; ++k) any |= static_cast<std::uint32_t>(p[k] < lo) | static_cast<std::uint32_t>(p[k] > hi);
+    return any;
   }
   // Container walls: a particle's centre stays one radius inside. On contact the
   // position is put back on the wall; if the particle moves into the wall, its normal
@@ -317,24 +393,27 @@ Simulation::ParticleOps Simulation::particleOps() {
           box ? static_cast<float>(box->restitution) : 0.0f,
           box ? static_cast<float>(box->friction) : 0.0f,
           wallLo_.data(),
-          wallHi_.data()};
+          wallHi_.data(),
+          uniformMass_,
+          gateLo_,
+          gateHi_};
 }
 
 void Simulation::kick(float h) {
   const ParticleOps ops = particleOps();
-  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.kick(i, h); });
+  forEachRange(state_.particles.size(), [&](std::size_t b, std::size_t e) { ops.kicks(b, e, h); });
 }
 
 void Simulation::drift(float dt) {
   const ParticleOps ops = particleOps();
-  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.drift(i, dt); });
+  forEachRange(state_.particles.size(), [&](std::size_t b, std::size_t e) { ops.drifts(b, e, dt); });
 }
 
 // No walls at all without an <Environment>.
 void Simulation::applyWalls() {
   if (!model_.container) return;
   const ParticleOps ops = particleOps();
-  forEachSlot(state_.particles.size(), [&](std::size_t i) { ops.walls(i); });
+  forEachRange(state_.particles.size(), [&](std::size_t b, std::size_t e) { ops.wallsOf(b, e); });
 }
 
 void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
@@ -353,14 +432,13 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
         // stage on), so that the kick and the drift stay vectorised loops.
         const std::size_t b = r.begin(), e = r.end();
         if (explicitEuler) {
-          for (std::size_t i = b; i != e; ++i) ops.drift(i, dt);
-          for (std::size_t i = b; i != e; ++i) ops.kick(i, h);
+          ops.drifts(b, e, dt);
+          ops.kicks(b, e, h);
         } else {
-          for (std::size_t i = b; i != e; ++i) ops.kick(i, h);
-          for (std::size_t i = b; i != e; ++i) ops.drift(i, dt);
+          ops.kicks(b, e, h);
+          ops.drifts(b, e, dt);
         }
-        if (walls)
-          for (std::size_t i = b; i != e; ++i) ops.walls(i);
+        if (walls) ops.wallsOf(b, e);
         if (displacement) f.top.addDisplacements(s, ref_, b, e);
         float speed2 = 0;
         bool finite = true;

@@ -1,6 +1,7 @@
 #pragma once
 /// The stepper: the seed's stages, in order, on (Model, State).
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -165,6 +166,10 @@ class Simulation {
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
   std::vector<float> rowRadius_, materialInverseMass_, materialRadius_;
   std::vector<std::array<float, 3>> wallLo_, wallHi_;  // per material: the walls' centre bounds
+  // The bounds a centre of any material may take without touching a wall (the largest
+  // lows, the smallest highs; no high for y without a lid), for a cheap test first.
+  std::array<float, 3> gateLo_{-INFINITY, -INFINITY, -INFINITY}, gateHi_{INFINITY, INFINITY, INFINITY};
+  bool uniformMass_ = false;  // every material has the first one's inverse mass
   fluid::ListOptions listOptions_;
 };
 
