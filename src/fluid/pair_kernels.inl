@@ -152,6 +152,37 @@ void trim(V& list, std::size_t used) {
 
 // One layer of PairList::build: its partners, written into its list (see build()).
 // Scratch: PairList's per-thread buffers (deduced: the type is private to PairList).
+// Copies the positions of slots [b, b + m) into a cell's candidate buffers (x, y, z) and
+// their list entries (slot - entryBase) into entry. With `whole` (the caller checked
+// that slots up to b + m + kFilterBlock exist and that the buffers have kFilterBlock
+// entries of room past the range), in whole blocks, the last one running past the range:
+// its excess lands where the next range goes, or in the buffers' padding. Fixed-size
+// blocks through unaliased pointers vectorise; a cell's ranges are short (a row of three
+// cells: about 8 slots for a resting goo), so a loop with a remainder spent its time in
+// the remainder.
+inline void copyCandidates(const float* __restrict px, const float* __restrict py, const float* __restrict pz,
+                           std::uint32_t b, std::uint32_t m, std::uint32_t entryBase, bool whole,
+                           float* __restrict x, float* __restrict y, float* __restrict z,
+                           std::uint32_t* __restrict entry) {
+  const std::uint32_t first = b - entryBase;  // modulo 2^32, as slot - entryBase
+  if (whole) {
+    for (std::uint32_t q = 0; q < m; q += kFilterBlock)
+      for (std::uint32_t t = q; t < q + kFilterBlock; ++t) {
+        x[t] = px[b + t];
+        y[t] = py[b + t];
+        z[t] = pz[b + t];
+        entry[t] = first + t;
+      }
+    return;
+  }
+  for (std::uint32_t t = 0; t < m; ++t) {
+    x[t] = px[b + t];
+    y[t] = py[b + t];
+    z[t] = pz[b + t];
+    entry[t] = first + t;
+  }
+}
+
 template <class Scratch>
 void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t cellBegin, std::size_t cellEnd,
                 Scratch& buf, neighbors::CellGrid::ForwardRanges& forwardRanges, const neighbors::CellGrid& grid,
@@ -197,11 +228,11 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
       }
       std::uint32_t k = 0;
       auto append = [&](std::uint32_t b, std::uint32_t e) {
-        for (std::uint32_t j = b; j < e; ++j, ++k) {
-          buf.x[k] = s.px[j]; buf.y[k] = s.py[j]; buf.z[k] = s.pz[j]; buf.entry[k] = j - entryBase;
-        }
+        copyCandidates(s.px.data(), s.py.data(), s.pz.data(), b, e - b, entryBase, e + kFilterBlock <= s.size(),
+                       buf.x.data() + k, buf.y.data() + k, buf.z.data() + k, buf.entry.data() + k);
         if (exclusive)
-          for (std::uint32_t j = b, q = k - (e - b); j < e; ++j, ++q) buf.owner[q] = s.owner[j];
+          for (std::uint32_t j = b; j < e; ++j) buf.owner[k + (j - b)] = s.owner[j];
+        k += e - b;
       };
       append(own.begin, own.end);
       for (const neighbors::SlotRange& r : forward) append(r.begin, r.end);
