@@ -338,12 +338,13 @@ int Viewer::run() {
     ImGui::NewFrame();
     handleInput();
 
+    // While a script has commands left, only its `frames` simulate: `wait` draws, paused
+    // or not. N steps one frame whether it was pressed or scripted (`key N` in runScript).
     const bool scripted = !script_.empty() || waitDraws_ > 0 || waitFrames_ > 0;
-    if (scripted) {
-      runScript();
-    } else if (stepOnce_) {
+    if (scripted) runScript();
+    if (stepOnce_) {
       advance(true);
-    } else if (!paused_) {
+    } else if (!scripted && !paused_) {
       advance(options_.drawPerFrame != 0);  // the seed's -drawPerFrame 0 draws every update
     }
     stepOnce_ = false;

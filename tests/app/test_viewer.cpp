@@ -32,16 +32,16 @@ void writeText(const fs::path& p, const std::string& text) {
     if (findProgram("xvfb-run").empty()) GTEST_SKIP() << "xvfb-run is not installed"; \
   } while (0)
 
-/// `softsub view <input> --script <script> --width 900 --height 600` in a virtual X
-/// server; killed after 60 s (a script without a working `quit` would hang). xvfb-run
+/// `softsub view <input> --script <script> --width 900 --height 600 <options>` in a
+/// virtual X server; killed after 60 s (a script without a working `quit` would hang). xvfb-run
 /// itself sometimes fails around the viewer, and then the run is tried again: -a can lose
 /// the race for a display number to a parallel test ("Xvfb failed to start"), and when
 /// the viewer exits at once (a script refused on its first lines) xvfb-run's cleanup can
 /// fail and replace the viewer's exit code with its own 5 (seen twice in full CI runs).
-RunResult view(const fs::path& input, const fs::path& script, const fs::path& cwd) {
+RunResult view(const fs::path& input, const fs::path& script, const fs::path& cwd, const std::string& options = "") {
   const std::string command = fmt::format(
-      "timeout -k 5 60 xvfb-run -a -s '-screen 0 1400x1000x24' {} view {} --script {} --width {} --height {}",
-      quote(softsubBinary()), quote(input), quote(script), kWidth, kHeight);
+      "timeout -k 5 60 xvfb-run -a -s '-screen 0 1400x1000x24' {} view {} --script {} --width {} --height {} {}",
+      quote(softsubBinary()), quote(input), quote(script), kWidth, kHeight, options);
   RunResult r;
   for (int attempt = 0; attempt < 3; ++attempt) {
     r = runCommand(command, cwd);
@@ -139,6 +139,48 @@ TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
   const FrameSnapshot simulated = frameAfter(expected, 3);
   ASSERT_EQ(written.fluids.size(), 1u);
   EXPECT_EQ(written.fluids[0].positions, simulated.fluids.at(0).positions);
+}
+
+/// The frame files `<stem>.NNNN.sim` in `dir`, by frame number.
+std::vector<int> simFrames(const fs::path& dir, const std::string& stem) {
+  std::vector<int> frames;
+  for (int f = 0; f < 100; ++f)
+    if (fs::exists(dir / fmt::format("{}.{:04}.sim", stem, f))) frames.push_back(f);
+  return frames;
+}
+
+// `key N` in a script steps exactly one frame, as pressing N does, wherever it stands in
+// the script (it used to do nothing unless it was the script's last command), and pauses;
+// `wait` only draws, playing or paused: while a script runs only `frames` and N simulate.
+TEST(Viewer, ScriptedKeyNStepsExactlyOneFrame) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const scene::SceneDesc desc = scene::readSceneFile(scene.string());
+  const fs::path out = tmp / "honey-dropSim";
+  struct Case {
+    std::string script, options;
+    std::vector<int> frames;  // the frames S writes
+  };
+  const Case cases[] = {
+      {"frames 3\nkey N\nwait 3\nkey S\nquit\n", "", {0, 1, 2, 3, 4}},
+      {"key N\nwait 5\nkey S\nquit\n", "--paused", {0, 1}},
+      {"key N\nkey N\nkey S\nquit\n", "--paused", {0, 1, 2}},
+      {"frames 1\nwait 4\nkey S\nquit\n", "", {0, 1}},  // playing: wait simulates nothing
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.script + c.options);
+    fs::remove_all(out);
+    writeText(tmp / "step.txt", c.script);
+    const RunResult r = view(scene, tmp / "step.txt", tmp.path(), c.options);
+    ASSERT_EQ(r.code, 0) << r.err << r.out;
+    ASSERT_EQ(simFrames(out, "honey-drop"), c.frames) << r.err;
+    // The last frame written is the simulation's after that many frames, exactly.
+    const int last = c.frames.back();
+    const FrameSnapshot written = cache::readSimFile(out / fmt::format("honey-drop.{:04}.sim", last)).frame;
+    ASSERT_EQ(written.fluids.size(), 1u);
+    EXPECT_EQ(written.fluids[0].positions, frameAfter(desc, last).fluids.at(0).positions);
+  }
 }
 
 TEST(Viewer, AColourChangeShowsInTheNextScreenshot) {
