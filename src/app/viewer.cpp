@@ -237,6 +237,7 @@ void Viewer::writeCaches() {
     setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
   } catch (const IoError& e) {
     setMessage(e.what(), true);
+    writeFailed_ = true;
   }
 }
 
@@ -250,6 +251,7 @@ void Viewer::saveScene(const std::filesystem::path& path) {
     setMessage(fmt::format("saved {}", path.string()));
   } catch (const IoError& e) {
     setMessage(e.what(), true);
+    writeFailed_ = true;
   }
 }
 
@@ -263,6 +265,7 @@ void Viewer::screenshot(const std::filesystem::path& path) {
     setMessage(fmt::format("screenshot {}", path.string()));
   } catch (const IoError& e) {
     setMessage(e.what(), true);
+    writeFailed_ = true;
   }
 }
 
@@ -320,8 +323,9 @@ void Viewer::runScript() {
       return;
     }
     if (messageIsError_ && !message_.empty()) {
-      // A scripted action that failed (an edit refused, a file not written) ends the run.
-      exitCode_ = static_cast<int>(ExitCode::BadInput);
+      // A scripted action that failed ends the run: exit 3 for a file not written (S,
+      // save), 2 for anything else (an edit refused, S on a recording).
+      exitCode_ = static_cast<int>(writeFailed_ ? ExitCode::IoFailure : ExitCode::BadInput);
       quit_ = true;
       return;
     }
@@ -368,7 +372,7 @@ int Viewer::run() {
     if (pendingShot_) {
       screenshot(*pendingShot_);
       pendingShot_.reset();
-      if (messageIsError_ && !options_.script.empty()) {
+      if (writeFailed_ && !options_.script.empty()) {
         exitCode_ = static_cast<int>(ExitCode::IoFailure);
         quit_ = true;
       }

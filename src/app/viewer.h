@@ -90,6 +90,7 @@ class Viewer {
   int exitCode_ = 0;
   std::string message_;
   bool messageIsError_ = false;
+  bool writeFailed_ = false;  // a file could not be written (S, save, screenshot): a script exits 3
   std::optional<solver::StabilityReport> stability_;
 
   // Mouse orbit.

@@ -275,6 +275,39 @@ TEST(Viewer, ARecordingRefusesParameterEdits) {
   EXPECT_FALSE(fs::exists(tmp / "never.scene"));
 }
 
+// A scripted command whose file cannot be written exits 3, as docs/cli.md says, whichever
+// command writes it (save and S exited 2, only screenshot 3); the commands after it do not
+// run. Here a regular file stands where a folder should be.
+TEST(Viewer, AScriptedWriteThatFailsExitsThree) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  writeText(tmp / "afile", "a file, not a folder\n");
+  struct Case {
+    std::string script, options, naming;
+  };
+  const Case cases[] = {
+      {"save afile/x.scene\nsave never.scene\nquit\n", "", "afile/x.scene"},
+      {"frames 1\nkey S\nsave never.scene\nquit\n", "--out afile/sub", "afile/sub"},
+      {"screenshot afile/x.png\nsave never.scene\nquit\n", "", "afile/x.png"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.script);
+    writeText(tmp / "write.txt", c.script);
+    const RunResult r = view(scene, tmp / "write.txt", tmp.path(), c.options);
+    EXPECT_EQ(r.code, 3) << r.err << r.out;
+    EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.naming), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "never.scene"));
+  }
+  // A command refused for another reason is still bad input: S on a recording.
+  const fs::path recorded = recordFrames(scene, 1, tmp.path());
+  writeText(tmp / "s.txt", "key S\nsave never.scene\nquit\n");
+  const RunResult r = view(recorded, tmp / "s.txt", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err << r.out;
+  EXPECT_FALSE(fs::exists(tmp / "never.scene"));
+}
+
 struct BadScript {
   std::string name;    ///< test name
   std::string text;    ///< the script; %FLUID% is the scene's fluid
