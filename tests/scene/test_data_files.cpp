@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene/writer.h"
 
@@ -71,7 +72,9 @@ TEST(SceneFiles, GoodScenesReadAndRoundTrip) {
   }
 }
 
-// The complete example in docs/scene-format.md (its first ```xml block) is a valid scene.
+// The complete example in docs/scene-format.md (its first ```xml block) is a valid scene,
+// and a clean one: neither the reader nor the compiler warns about it (an oil point used
+// to sit exactly on a point of honey's sphere fill).
 TEST(SceneFiles, DocsExampleIsValid) {
   std::ifstream in(std::string(SOFTSUB_SOURCE_DIR) + "/docs/scene-format.md");
   ASSERT_TRUE(in);
@@ -88,9 +91,15 @@ TEST(SceneFiles, DocsExampleIsValid) {
     }
   }
   ASSERT_FALSE(example.empty());
-  const SceneDesc d = readSceneText(example, "scene-format.md");
+  std::vector<std::string> warnings;
+  ReadOptions options;
+  options.warnings = &warnings;
+  const SceneDesc d = readSceneText(example, "scene-format.md", options);
   EXPECT_EQ(d.fluids.size(), 2U);
   EXPECT_EQ(d.interactions.pairs.size(), 2U);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  const Compiled compiled = compile(d);
+  EXPECT_TRUE(compiled.warnings.empty()) << compiled.warnings.front();
 }
 
 }  // namespace
