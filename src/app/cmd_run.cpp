@@ -206,7 +206,8 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   run->add_option("--integrator", o.integrator, "Overrides <Simulation><Integrator>")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(scene::kIntegratorNames),
                                                      std::end(scene::kIntegratorNames))));
-  run->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
+  run->add_flag("-q,--quiet", o.quiet,
+                "Print nothing but errors (and a warning when a --preview picture cannot be drawn)");
   run->add_option("--max-particles", o.maxParticles,
                   "Refuse scenes with more particles than this (default: the reader's limit)")
       ->check(particleCap());
@@ -358,7 +359,8 @@ int runCommand(const RunOptions& o) {
   std::string previewNote;
   if (view) {
     // The caches are complete whatever happens here: a system that cannot draw gets a
-    // warning, not a failed run.
+    // warning, not a failed run. The warning is printed even when quiet: the picture was
+    // asked for, and a successful run that silently lacks it would mislead.
     const std::filesystem::path picture = outDir / (loaded.name + ".preview.png");
     try {
       // The folder once the picture can be drawn: with --formats none it holds nothing
