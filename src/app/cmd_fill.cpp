@@ -34,7 +34,8 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
                   "as in a scene (default: filled)");
   cmd->add_option("--max-particles", o.maxParticles, "Refuse fills larger than this (default: 20,000,000)")
       ->check(particleCap());
-  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on stderr but errors");
+  cmd->add_flag("-q,--quiet", o.quiet,
+                "No summary on stderr, even on a terminal (errors and warnings are still printed)");
   return cmd;
 }
 
