@@ -213,6 +213,7 @@ int renderCommand(const RenderOptions& o) {
   const bool recorded = isRecording(o.input);
   const auto start = std::chrono::steady_clock::now();
   if (recorded) {
+    refuseSimulationOptions(o.input, o.substeps.has_value(), o.maxParticles != 0);
     RecordedFrames rec = openRecorded(o.input);
     sceneName = rec.sceneName;
     fps = rec.framesPerSecond;

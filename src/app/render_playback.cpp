@@ -2,7 +2,11 @@
 
 #include <cctype>
 #include <filesystem>
+#include <utility>
 
+#include <fmt/format.h>
+
+#include "core/error.h"
 #include "render/renderer.h"
 #include "scene_view.h"
 #include "session/playback.h"
@@ -34,6 +38,14 @@ bool isRecording(const std::string& input) {
   std::string ext = p.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".sim";
+}
+
+void refuseSimulationOptions(const std::string& input, bool substeps, bool maxParticles) {
+  for (const auto& [given, option] : {std::pair{substeps, "--substeps"}, std::pair{maxParticles, "--max-particles"}})
+    if (given)
+      throw InputError({"command line", 0, option},
+                       fmt::format("is for a scene: {} is a recording, drawn as it was simulated", input),
+                       fmt::format("a .scene input, or leave {} out", option));
 }
 
 RecordedFrames::~RecordedFrames() = default;

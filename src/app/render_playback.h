@@ -43,6 +43,11 @@ class RecordedFrames {
 /// (which plays its folder).
 [[nodiscard]] bool isRecording(const std::string& input);
 
+/// A recording is drawn as it was simulated: the options that change how a scene is
+/// simulated (`--substeps`, `--max-particles`) would do nothing, and are refused with it,
+/// naming the option and `input` (InputError, exit 2), rather than silently ignored.
+void refuseSimulationOptions(const std::string& input, bool substeps, bool maxParticles);
+
 /// Opens a recorded folder (see RecordedFrames).
 [[nodiscard]] inline RecordedFrames openRecorded(const std::string& folder) { return RecordedFrames(folder); }
 

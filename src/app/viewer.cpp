@@ -62,6 +62,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     script_.assign(commands.begin(), commands.end());
   }
   if (isRecording(options.input)) {
+    refuseSimulationOptions(options.input, options.substeps.has_value(), options.maxParticles != 0);
     recorded_ = std::make_unique<RecordedFrames>(options.input);
     sceneName_ = recorded_->sceneName;
     renderScene_ = recorded_->scene;

@@ -213,6 +213,27 @@ TEST(RenderCli, ARangeOutsideARecordingIsRefusedBeforeAnythingIsCreated) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A recording is drawn as it was simulated: --substeps and --max-particles, which change how
+// a scene is simulated, were silently ignored with one; they are refused, naming the option,
+// before anything is created.
+TEST(RenderCli, SimulationOptionsWithARecordingAreRefused) {
+  TempDir tmp;
+  const fs::path recorded = recordTwoFluids(tmp.path());
+  const fs::path out = tmp / "pictures";
+  for (const auto& [option, value] : {std::pair<std::string, std::string>{"--substeps", " 4"},
+                                      std::pair<std::string, std::string>{"--max-particles", " 100000"}}) {
+    const RunResult r = render(recorded, out, option + value, tmp.path());
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("error: command line: " + option + ": is for a scene: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("is a recording"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << option;
+    // The same option with the scene is taken.
+    const RunResult scene = render(tmp / "two-fluids.scene", out, option + value + " --frames 0", tmp.path());
+    EXPECT_EQ(scene.code, 0) << scene.err;
+    fs::remove_all(out);
+  }
+}
+
 TEST(RenderCli, AnObjectIsDrawnAsItsMeshAtItsPose) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "box-on-jelly.scene", tmp.path());

@@ -357,6 +357,23 @@ INSTANTIATE_TEST_SUITE_P(
 namespace softsub::apptest {
 namespace {
 
+// A recording plays as it was simulated: --substeps and --max-particles are refused with
+// one (exit 2, naming the option) before a window is opened, rather than ignored.
+TEST(Viewer, SimulationOptionsWithARecordingAreRefused) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const fs::path recorded = recordFrames(scene, 1, tmp.path());
+  for (const std::string option : {"--substeps 4", "--max-particles 100000"}) {
+    const RunResult r = runCommand(fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY {} view {} {}",
+                                               quote(softsubBinary()), quote(recorded), option),
+                                   tmp.path());
+    EXPECT_EQ(r.code, 2) << option << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("error: command line: " + option.substr(0, option.find(' ')) + ": is for a scene", 0),
+              0u)
+        << r.err;
+  }
+}
+
 // Without a display the window cannot open: an I/O failure (exit 3) that says what to do
 // instead, and the script's outputs are not written.
 TEST(Viewer, WithoutADisplayExitsThreeAndPointsToRender) {
