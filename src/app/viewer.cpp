@@ -73,8 +73,10 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     if (options.substeps) loaded.desc.simulation.substeps = static_cast<int>(*options.substeps);
     sceneName_ = loaded.name;
     const std::filesystem::path outDir = options.out.empty() ? loaded.defaultOutDir : std::filesystem::path(options.out);
-    session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir);
-    session_->setRecording(options.record != 0);
+    // The seed's -record 0 keeps no frame, frame 0 included: S then has nothing to write.
+    cache::Formats formats;
+    if (options.record == 0) formats.sim = formats.pdc = formats.ply = false;
+    session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir, formats);
     if (options.stopRecordingAt >= 0) session_->setStopRecordingAt(options.stopRecordingAt);
     renderScene_ = renderSceneOf(session_->desc(), session_->objectMeshes());
     startCamera_ = cameraOf(session_->desc().camera);
@@ -235,7 +237,10 @@ void Viewer::writeCaches() {
   }
   try {
     const auto written = session_->writeRecorded();
-    setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
+    if (written.frames == 0)
+      setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames" : "nothing written: no frame is kept");
+    else
+      setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
   } catch (const IoError& e) {
     setMessage(e.what(), true);
     writeFailed_ = true;

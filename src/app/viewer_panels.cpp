@@ -287,7 +287,8 @@ void Viewer::drawSimulationPanel() {
   drawTransport("restart");
   ImGui::SameLine();
   if (ImGui::Button("write caches")) writeCaches();
-  ImGui::TextDisabled("%s", session_->recordingNote().c_str());
+  ImGui::TextDisabled("%s", options_.record == 0 ? "not recording (--record 0): S writes nothing"
+                                                 : session_->recordingNote().c_str());
 
   if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) {
     scene::SimulationDesc& sim = session_->editableDesc().simulation;

@@ -308,6 +308,23 @@ TEST(Viewer, AScriptedWriteThatFailsExitsThree) {
   EXPECT_FALSE(fs::exists(tmp / "never.scene"));
 }
 
+// `--record 0` (the seed's -record 0) keeps nothing, so S writes nothing: not even frame
+// 0, which it used to write, and no folder is made.
+TEST(Viewer, RecordZeroKeepsNothingForS) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  writeText(tmp / "s.txt", "frames 2\nkey S\nquit\n");
+  const RunResult r = view(scene, tmp / "s.txt", tmp.path(), "--record 0");
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_FALSE(fs::exists(tmp / "honey-dropSim")) << r.err;
+  EXPECT_NE(r.err.find("nothing written: --record 0 keeps no frames"), std::string::npos) << r.err;
+  // --record 1, the default, keeps every frame.
+  const RunResult kept = view(scene, tmp / "s.txt", tmp.path(), "--record 1");
+  ASSERT_EQ(kept.code, 0) << kept.err << kept.out;
+  EXPECT_EQ(simFrames(tmp / "honey-dropSim", "honey-drop"), (std::vector<int>{0, 1, 2})) << kept.err;
+}
+
 struct BadScript {
   std::string name;    ///< test name
   std::string text;    ///< the script; %FLUID% is the scene's fluid
