@@ -85,7 +85,11 @@ void printSceneInfo(const std::string& path) {
                  obj.geometry.empty() ? std::string(scene::kObjectShapeNames[static_cast<std::size_t>(obj.shape)])
                                       : obj.geometry,
                  groupThousands(body.count), 2 * body.particleRadius, obj.isDynamic ? "dynamic" : "static", obj.mass);
-      fmt::print("    {}\n", describeFields(obj, {"Name", "Geometry", "Mass", "IsDynamic"}));
+      // Without <ParticleSize> the field holds 0, a value a scene may not hold: show the
+      // diameter the body is filled with (1/20 of its largest extent) instead.
+      scene::ObjectDesc shown = obj;
+      shown.particleSize = 2 * body.particleRadius;
+      fmt::print("    {}\n", describeFields(shown, {"Name", "Geometry", "Mass", "IsDynamic"}));
     }
   }
 

@@ -53,6 +53,22 @@ TEST(Info, SceneListsObjectsTheirParticlesAndTheFluidObjectFunction) {
   expectContains(r.out, "pair oil / box: Linear (AtZero 6, Cutoff 2");
 }
 
+// An object without <ParticleSize> is filled with particles of 1/20 of its largest extent;
+// info printed the unset field as 'ParticleSize 0' (a value the schema refuses) next to
+// the real diameter. It prints the size used.
+TEST(Info, AnObjectWithoutParticleSizeShowsTheSizeUsed) {
+  TempDir tmp;
+  std::ofstream(tmp / "ball.scene")
+      << "<Scene version=\"1\"><Fluid><Name>a</Name><NumberOfParticles>1</NumberOfParticles>"
+         "<Particles>1 20 3</Particles></Fluid>"
+         "<Object><Name>ball</Name><Shape>sphere</Shape><Size>2</Size></Object></Scene>\n";
+  const RunResult r = runSoftsub("info ball.scene", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectContains(r.out, "particles of diameter 0.2, ");
+  expectContains(r.out, "ParticleSize 0.2, ");
+  EXPECT_EQ(r.out.find("ParticleSize 0,"), std::string::npos) << r.out;
+}
+
 TEST(Info, SceneWithoutEnvironmentSaysSo) {
   TempDir tmp;
   std::ofstream(tmp / "free.scene")
