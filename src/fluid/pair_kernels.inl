@@ -165,21 +165,26 @@ inline void copyCandidates(const float* __restrict px, const float* __restrict p
                            float* __restrict x, float* __restrict y, float* __restrict z,
                            std::uint32_t* __restrict entry) {
   const std::uint32_t first = b - entryBase;  // modulo 2^32, as slot - entryBase
+  px += b;
+  py += b;
+  pz += b;
+  // Offsets as std::size_t: with 32-bit ones GCC cannot prove the accesses contiguous.
+  const std::size_t count = whole ? (m + kFilterBlock - 1) / kFilterBlock * kFilterBlock : m;
   if (whole) {
-    for (std::uint32_t q = 0; q < m; q += kFilterBlock)
-      for (std::uint32_t t = q; t < q + kFilterBlock; ++t) {
-        x[t] = px[b + t];
-        y[t] = py[b + t];
-        z[t] = pz[b + t];
-        entry[t] = first + t;
+    for (std::size_t q = 0; q < count; q += kFilterBlock)
+      for (std::size_t t = q; t < q + kFilterBlock; ++t) {
+        x[t] = px[t];
+        y[t] = py[t];
+        z[t] = pz[t];
+        entry[t] = first + static_cast<std::uint32_t>(t);
       }
     return;
   }
-  for (std::uint32_t t = 0; t < m; ++t) {
-    x[t] = px[b + t];
-    y[t] = py[b + t];
-    z[t] = pz[b + t];
-    entry[t] = first + t;
+  for (std::size_t t = 0; t < count; ++t) {
+    x[t] = px[t];
+    y[t] = py[t];
+    z[t] = pz[t];
+    entry[t] = first + static_cast<std::uint32_t>(t);
   }
 }
 
