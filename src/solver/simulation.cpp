@@ -74,16 +74,25 @@ struct Top2 {
     alignas(32) float d2[kRun];
     for (std::size_t r = b; r < e; r += kRun) {
       const std::size_t m = std::min(kRun, e - r);
-      std::uint32_t top = 0;
-      for (std::size_t k = 0; k < m; ++k) {
-        const std::size_t i = r + k;
-        const float dx = px[i] - rx[i], dy = py[i] - ry[i], dz = pz[i] - rz[i];
-        d2[k] = dx * dx + dy * dy + dz * dz;
-        top = std::max(top, std::bit_cast<std::uint32_t>(d2[k]));
-      }
+      const std::uint32_t top = m == kRun ? squares(px + r, py + r, pz + r, rx + r, ry + r, rz + r, d2, kRun)
+                                          : squares(px + r, py + r, pz + r, rx + r, ry + r, rz + r, d2, m);
       if (top <= std::bit_cast<std::uint32_t>(second)) continue;
       for (std::size_t k = 0; k < m; ++k) add(d2[k]);
     }
+  }
+  // The squared displacements of m slots into d2, and their largest bit pattern. Inlined
+  // with m = kRun for whole runs: a loop of known length vectorises without a remainder.
+  [[gnu::always_inline]] static std::uint32_t squares(const float* __restrict px, const float* __restrict py,
+                                                      const float* __restrict pz, const float* __restrict rx,
+                                                      const float* __restrict ry, const float* __restrict rz,
+                                                      float* __restrict d2, std::size_t m) {
+    std::uint32_t top = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const float dx = px[k] - rx[k], dy = py[k] - ry[k], dz = pz[k] - rz[k];
+      d2[k] = dx * dx + dy * dy + dz * dz;
+      top = std::max(top, std::bit_cast<std::uint32_t>(d2[k]));
+    }
+    return top;
   }
 };
 
@@ -311,13 +320,19 @@ struct Simulation::ParticleOps {
         std::fill_n(im, m, mats[0].inverseMass);
       else
         for (std::size_t k = 0; k < m; ++k) im[k] = mats[s.material[r + k]].inverseMass;
-      kickAxis<&Force::x>(v[0] + r, f + r, im, g[0], h, m);
-      kickAxis<&Force::y>(v[1] + r, f + r, im, g[1], h, m);
-      kickAxis<&Force::z>(v[2] + r, f + r, im, g[2], h, m);
+      if (m == kRun) {  // a known length: no remainder loop
+        kickAxis<&Force::x>(v[0] + r, f + r, im, g[0], h, kRun);
+        kickAxis<&Force::y>(v[1] + r, f + r, im, g[1], h, kRun);
+        kickAxis<&Force::z>(v[2] + r, f + r, im, g[2], h, kRun);
+      } else {
+        kickAxis<&Force::x>(v[0] + r, f + r, im, g[0], h, m);
+        kickAxis<&Force::y>(v[1] + r, f + r, im, g[1], h, m);
+        kickAxis<&Force::z>(v[2] + r, f + r, im, g[2], h, m);
+      }
     }
   }
   template <float Force::*kAxis>
-  static void kickAxis(float* __restrict v, const Force* __restrict f, const float* __restrict im, float g, float h,
+  [[gnu::always_inline]] static void kickAxis(float* __restrict v, const Force* __restrict f, const float* __restrict im, float g, float h,
                        std::size_t m) {
     for (std::size_t k = 0; k < m; ++k) v[k] += (f[k].*kAxis * im[k] + g) * h;
   }
@@ -337,12 +352,15 @@ struct Simulation::ParticleOps {
     for (std::size_t r = from; r < to; r += kRun) {
       const std::size_t m = std::min(kRun, to - r);
       std::uint32_t near = 0;
-      for (int a = 0; a < 3; ++a) near |= outside(p[a] + r, gateLo[a], gateHi[a], m);
+      for (int a = 0; a < 3; ++a)
+        near |= m == kRun ? outside(p[a] + r, gateLo[a], gateHi[a], kRun) : outside(p[a] + r, gateLo[a], gateHi[a], m);
       if (near == 0) continue;
       for (std::size_t i = r; i < r + m; ++i) walls(i);
     }
   }
-  static std::uint32_t outside(const float* __restrict p, float lo, float hi, std::size_t m) {
+  // Inlined with m = kRun for whole runs: a loop of known length vectorises without a
+  // remainder.
+  [[gnu::always_inline]] static std::uint32_t outside(const float* __restrict p, float lo, float hi, std::size_t m) {
     std::uint32_t any = 0;
     for (std::size_t k = 0; k < m; ++k) any |= static_cast<std::uint32_t>(p[k] < lo) | static_cast<std::uint32_t>(p[k] > hi);
     return any;
