@@ -216,6 +216,7 @@ int renderCommand(const RenderOptions& o) {
     refuseSimulationOptions(o.input, o.substeps.has_value(), o.maxParticles != 0);
     RecordedFrames rec = openRecorded(o.input);
     sceneName = rec.sceneName;
+    checkOutputName(sceneName, "scene name", o.input);  // it names the pictures
     fps = rec.framesPerSecond;
     bool any = false;
     for (std::size_t i = 0; i < rec.frameCount() && !any; ++i) any = range.contains(rec.frameNumber(i));
@@ -242,6 +243,7 @@ int renderCommand(const RenderOptions& o) {
     LoadedScene loaded = loadScene(o.input, o.maxParticles);
     if (o.substeps) loaded.desc.simulation.substeps = static_cast<int>(*o.substeps);
     sceneName = loaded.name;
+    checkOutputName(sceneName, "scene name", loaded.file);  // it names the pictures
     fps = loaded.desc.simulation.framesPerSecond;
     std::int64_t lastFrame = loaded.desc.simulation.frames;
     if (range.last) lastFrame = std::min(lastFrame, *range.last);
@@ -253,12 +255,12 @@ int renderCommand(const RenderOptions& o) {
     scene::Compiled compiled = scene::compile(loaded.desc);
     if (chatty)
       for (const std::string& w : compiled.warnings)
-        fmt::print(stderr, "warning: {}: {}\n", o.input.empty() ? loaded.name + ".scene" : o.input, w);
+        fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
     if (o.surface)
-      checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), o.input.empty() ? loaded.name + ".scene" : o.input);
+      checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file);
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);

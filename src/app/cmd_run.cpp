@@ -114,25 +114,6 @@ void applyOverrides(const RunOptions& o, scene::SceneDesc& desc) {
   }
 }
 
-/// The names that become parts of the output files' names, checked before anything is
-/// created: the scene's (every file of the run, the preview), the fluids' (PDC files,
-/// surfaces) and the objects' (their OBJ files beside the .sim files). The rule knows
-/// names, not files: an error names the scene file they come from.
-void checkOutputNames(const LoadedScene& loaded, const std::string& sceneFile, const cache::Formats& formats,
-                      bool preview) {
-  try {
-    if (anyFormat(formats) || preview) cache::checkFileNamePart(loaded.name, "scene name");
-    if (formats.pdc || formats.mesh || formats.vdb)
-      for (const scene::FluidDesc& f : loaded.desc.fluids) cache::checkFileNamePart(f.name, "Fluid/Name");
-    if (formats.sim)
-      for (const scene::ObjectDesc& obj : loaded.desc.objects)
-        cache::checkFileNamePart(obj.name, "Object/Name");
-  } catch (const InputError& e) {
-    if (!e.where().file.empty()) throw;
-    throw InputError({sceneFile, 0, e.where().element}, e.problem(), e.allowed());
-  }
-}
-
 /// A hash of everything that decides a run's outputs except how many frames it runs:
 /// the scene after the overrides, the simulation's starting state (fills placed, bodies'
 /// particles where their bodies put them, the bodies' states), the objects' meshes as
@@ -245,8 +226,9 @@ int runCommand(const RunOptions& o) {
   const cache::Formats formats = checkCommandLine(o);
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
-  const std::string sceneFile = o.scene.empty() ? loaded.name + ".scene" : o.scene;
-  checkOutputNames(loaded, sceneFile, formats, o.preview);
+  const std::string& sceneFile = loaded.file;
+  // The scene's name names every file of the run and the preview: with neither, no file.
+  checkOutputNames(loaded, formats, anyFormat(formats) || o.preview);
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);

@@ -3,8 +3,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "cache/frame_writer.h"
 #include "scene/scene_desc.h"
 
 namespace softsub::app {
@@ -19,6 +21,7 @@ const char* defaultSceneText();
 struct LoadedScene {
   scene::SceneDesc desc;               ///< validated description
   std::string name;                    ///< file stem: names the output files
+  std::string file;                    ///< the scene file as given (`<name>.scene` for the embedded one): what messages name
   std::filesystem::path defaultOutDir; ///< <sceneDir>/<name>Sim
   std::vector<std::string> warnings;   ///< the reader's warnings (meshes repaired or not closed)
 };
@@ -26,5 +29,17 @@ struct LoadedScene {
 /// Reads and validates `path`, or the embedded default scene when `path` is empty.
 /// `maxParticles` 0 keeps the reader's default limit. Throws InputError / IoError.
 LoadedScene loadScene(const std::string& path, std::uint64_t maxParticles);
+
+/// Checks that `name`, which becomes part of output file names, can be one
+/// (cache::checkFileNamePart); the rule knows names, not files: the InputError names
+/// `file`, where the name comes from.
+void checkOutputName(std::string_view name, std::string_view element, const std::string& file);
+
+/// The names that become parts of the output files' names, checked before anything is
+/// created: the scene's when `sceneNamesFiles` (every file of a run, pictures, the
+/// preview, screenshots), the fluids' when `formats` has PDC files or surfaces, and the
+/// objects' (their OBJ files beside the .sim frames) when it has `.sim` frames. An error
+/// names the scene file.
+void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, bool sceneNamesFiles);
 
 }  // namespace softsub::app

@@ -65,6 +65,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     refuseSimulationOptions(options.input, options.substeps.has_value(), options.maxParticles != 0);
     recorded_ = std::make_unique<RecordedFrames>(options.input);
     sceneName_ = recorded_->sceneName;
+    checkOutputName(sceneName_, "scene name", options.input);  // P's screenshots are named after it
     renderScene_ = recorded_->scene;
     startCamera_ = recorded_->camera;
     playFrame_ = recorded_->load(0);
@@ -76,6 +77,9 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     // The seed's -record 0 keeps no frame, frame 0 included: S then has nothing to write.
     cache::Formats formats;
     if (options.record == 0) formats.sim = formats.pdc = formats.ply = false;
+    // Checked as run checks them, before the window opens: S writes files named after the
+    // scene, fluids and objects, P screenshots named after the scene.
+    checkOutputNames(loaded, formats, true);
     session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir, formats);
     if (options.stopRecordingAt >= 0) session_->setStopRecordingAt(options.stopRecordingAt);
     renderScene_ = renderSceneOf(session_->desc(), session_->objectMeshes());

@@ -234,6 +234,30 @@ TEST(RenderCli, SimulationOptionsWithARecordingAreRefused) {
   }
 }
 
+// The scene's name names the pictures: a scene file named with a tab wrote PNG names with
+// a tab. As for run, the name is checked before anything is made and the error names the
+// scene file; a recorded folder whose frames carry such a name is refused naming the folder.
+TEST(RenderCli, ASceneNameThatCannotBeAFileNameIsRefusedBeforeAnythingIsMade) {
+  TempDir tmp;
+  const std::string name = "a\tb.scene";
+  fs::copy_file(examplesDir() / "two-fluids.scene", tmp / name);
+  const RunResult r = render(tmp / name, tmp / "o", "--frames 0", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  const std::string expected =
+      "error: " + (tmp / "a\\tb.scene").string() + ": scene name: name 'a?b' cannot be used";
+  EXPECT_EQ(r.err.rfind(expected, 0), 0u) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+
+  const fs::path recorded = recordTwoFluids(tmp.path());
+  fs::create_directory(tmp / "tabbed");
+  fs::copy_file(recorded / "two-fluids.0000.sim", tmp / "tabbed" / "a\tb.0000.sim");
+  const RunResult rec = render(tmp / "tabbed", tmp / "p", "", tmp.path());
+  EXPECT_EQ(rec.code, 2) << rec.err;
+  EXPECT_EQ(rec.err.rfind("error: " + (tmp / "tabbed").string() + ": scene name: name 'a?b' cannot be used", 0), 0u)
+      << rec.err;
+  EXPECT_FALSE(fs::exists(tmp / "p"));
+}
+
 TEST(RenderCli, AnObjectIsDrawnAsItsMeshAtItsPose) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "box-on-jelly.scene", tmp.path());

@@ -391,6 +391,23 @@ TEST(Viewer, SimulationOptionsWithARecordingAreRefused) {
   }
 }
 
+// S writes caches named after the scene (and its fluids and objects), P screenshots: a
+// scene file named with a tab got as far as S, which failed as `<input>: scene name: ...`.
+// The names are checked as run checks them, before the window opens (no display needed),
+// and the error names the scene file.
+TEST(Viewer, ASceneNameThatCannotBeAFileNameIsRefusedBeforeTheWindowOpens) {
+  TempDir tmp;
+  const std::string name = "a\tb.scene";
+  fs::copy_file(examplesDir() / "honey-drop.scene", tmp / name);
+  const RunResult r = runCommand(
+      fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY {} view {}", quote(softsubBinary()), quote(tmp / name)),
+      tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  const std::string expected =
+      "error: " + (tmp / "a\\tb.scene").string() + ": scene name: name 'a?b' cannot be used";
+  EXPECT_EQ(r.err.rfind(expected, 0), 0u) << r.err;
+}
+
 // Without a display the window cannot open: an I/O failure (exit 3) that says what to do
 // instead, and the script's outputs are not written.
 TEST(Viewer, WithoutADisplayExitsThreeAndPointsToRender) {
