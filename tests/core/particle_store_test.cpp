@@ -60,6 +60,33 @@ TEST(ParticleStore, PermuteMovesEveryArrayTogetherAndZeroesForces) {
   }
 }
 
+// A re-sort in which few particles changed cell: runs of consecutive slots shifted, a
+// few strays between them, across the parallel blocks, with a length that is no whole
+// number of runs of eight (the gather copies whole runs at once).
+TEST(ParticleStore, PermuteOfShiftedRunsAndStraysMovesEveryArrayTogether) {
+  ParticleStore s = numbered(40003);
+  std::vector<std::uint32_t> order(s.size()), scratch(s.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::mt19937 rng(11);
+  // Each move takes one slot out and puts it back elsewhere: what lies between shifts by one.
+  for (int m = 0; m < 300; ++m) {
+    const std::size_t from = rng() % order.size(), to = rng() % order.size();
+    const std::uint32_t v = order[from];
+    order.erase(order.begin() + static_cast<std::ptrdiff_t>(from));
+    order.insert(order.begin() + static_cast<std::ptrdiff_t>(to), v);
+  }
+  s.permute(order, scratch);
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const std::uint32_t was = order[k];
+    const float f = static_cast<float>(was);
+    ASSERT_EQ(s.id[k], was) << k;
+    ASSERT_EQ(s.px[k], f); ASSERT_EQ(s.py[k], 10 + f); ASSERT_EQ(s.pz[k], 20 + f);
+    ASSERT_EQ(s.vx[k], 30 + f); ASSERT_EQ(s.vy[k], 40 + f); ASSERT_EQ(s.vz[k], 50 + f);
+    ASSERT_EQ(s.material[k], was % 7);
+    ASSERT_EQ(s.owner[k], was % 3);
+  }
+}
+
 TEST(ParticleStore, SlotsByIdInvertsThePermutation) {
   ParticleStore s = numbered(300);
   std::vector<std::uint32_t> order(s.size());
