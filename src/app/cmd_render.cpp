@@ -254,13 +254,11 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("frames in [0, {}]", loaded.desc.simulation.frames));
     scene::Compiled compiled = scene::compile(loaded.desc);
     if (chatty)
-      for (const std::string& w : compiled.warnings)
-        fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);
+      for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
-    if (o.surface)
-      checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file);
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file);
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);

@@ -41,7 +41,8 @@ bool isRecording(const std::string& input) {
 }
 
 void refuseSimulationOptions(const std::string& input, bool substeps, bool maxParticles) {
-  for (const auto& [given, option] : {std::pair{substeps, "--substeps"}, std::pair{maxParticles, "--max-particles"}})
+  for (const auto& [given, option] :
+       {std::pair{substeps, "--substeps"}, std::pair{maxParticles, "--max-particles"}})
     if (given)
       throw InputError({"command line", 0, option},
                        fmt::format("is for a scene: {} is a recording, drawn as it was simulated", input),

@@ -45,7 +45,8 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
   if (formats.pdc || formats.mesh || formats.vdb)
     for (const scene::FluidDesc& f : loaded.desc.fluids) checkOutputName(f.name, "Fluid/Name", loaded.file);
   if (formats.sim)
-    for (const scene::ObjectDesc& obj : loaded.desc.objects) checkOutputName(obj.name, "Object/Name", loaded.file);
+    for (const scene::ObjectDesc& obj : loaded.desc.objects)
+      checkOutputName(obj.name, "Object/Name", loaded.file);
 }
 
 }  // namespace softsub::app

@@ -21,7 +21,7 @@ const char* defaultSceneText();
 struct LoadedScene {
   scene::SceneDesc desc;               ///< validated description
   std::string name;                    ///< file stem: names the output files
-  std::string file;                    ///< the scene file as given (`<name>.scene` for the embedded one): what messages name
+  std::string file;                    ///< the scene file messages name (`<name>.scene`: embedded)
   std::filesystem::path defaultOutDir; ///< <sceneDir>/<name>Sim
   std::vector<std::string> warnings;   ///< the reader's warnings (meshes repaired or not closed)
 };

@@ -241,10 +241,12 @@ void Viewer::writeCaches() {
   }
   try {
     const auto written = session_->writeRecorded();
-    if (written.frames == 0)
-      setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames" : "nothing written: no frame is kept");
-    else
+    if (written.frames == 0) {
+      setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames"
+                                      : "nothing written: no frame is kept");
+    } else {
       setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
+    }
   } catch (const IoError& e) {
     setMessage(e.what(), true);
     writeFailed_ = true;

@@ -253,7 +253,8 @@ TEST(RenderCli, ASceneNameThatCannotBeAFileNameIsRefusedBeforeAnythingIsMade) {
   fs::copy_file(recorded / "two-fluids.0000.sim", tmp / "tabbed" / "a\tb.0000.sim");
   const RunResult rec = render(tmp / "tabbed", tmp / "p", "", tmp.path());
   EXPECT_EQ(rec.code, 2) << rec.err;
-  EXPECT_EQ(rec.err.rfind("error: " + (tmp / "tabbed").string() + ": scene name: name 'a?b' cannot be used", 0), 0u)
+  EXPECT_EQ(
+      rec.err.rfind("error: " + (tmp / "tabbed").string() + ": scene name: name 'a?b' cannot be used", 0), 0u)
       << rec.err;
   EXPECT_FALSE(fs::exists(tmp / "p"));
 }

@@ -38,9 +38,11 @@ void writeText(const fs::path& p, const std::string& text) {
 /// the race for a display number to a parallel test ("Xvfb failed to start"), and when
 /// the viewer exits at once (a script refused on its first lines) xvfb-run's cleanup can
 /// fail and replace the viewer's exit code with its own 5 (seen twice in full CI runs).
-RunResult view(const fs::path& input, const fs::path& script, const fs::path& cwd, const std::string& options = "") {
+RunResult view(const fs::path& input, const fs::path& script, const fs::path& cwd,
+               const std::string& options = "") {
   const std::string command = fmt::format(
-      "timeout -k 5 60 xvfb-run -a -s '-screen 0 1400x1000x24' {} view {} --script {} --width {} --height {} {}",
+      "timeout -k 5 60 xvfb-run -a -s '-screen 0 1400x1000x24' {} view {} --script {} "
+      "--width {} --height {} {}",
       quote(softsubBinary()), quote(input), quote(script), kWidth, kHeight, options);
   RunResult r;
   for (int attempt = 0; attempt < 3; ++attempt) {
@@ -385,8 +387,8 @@ TEST(Viewer, SimulationOptionsWithARecordingAreRefused) {
                                                quote(softsubBinary()), quote(recorded), option),
                                    tmp.path());
     EXPECT_EQ(r.code, 2) << option << ": " << r.err;
-    EXPECT_EQ(r.err.rfind("error: command line: " + option.substr(0, option.find(' ')) + ": is for a scene", 0),
-              0u)
+    EXPECT_EQ(
+        r.err.rfind("error: command line: " + option.substr(0, option.find(' ')) + ": is for a scene", 0), 0u)
         << r.err;
   }
 }
