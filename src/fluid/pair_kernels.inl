@@ -317,6 +317,41 @@ inline void toRecords(const float* __restrict gx, const float* __restrict gy, co
 #endif
 }
 
+// Pass 3 of the kernel: value[c] = p[0] + p[1] * frac[c] with p = samples + piece[c].
+// A piece's two numbers are adjacent, so each pair's are one 8-byte load, and four
+// loads give four pairs' values and slopes after two shuffles (GCC's own vectorisation
+// loaded each number on its own and inserted it into its lane). The same IEEE
+// operations as the plain loop (no FMA), so bitwise the same values.
+inline void readTable(const float* __restrict samples, const std::int32_t* __restrict piece,
+                      const float* __restrict frac, float* __restrict value, std::uint32_t n) {
+  std::uint32_t c = 0;
+#if defined(__SSE2__)
+  // Pairs c and c + 1: (a_c, b_c, a_c+1, b_c+1).
+  const auto two = [&](std::uint32_t k) {
+    const __m128 lo = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(samples + piece[k])));
+    return _mm_loadh_pi(lo, reinterpret_cast<const __m64*>(samples + piece[k + 1]));
+  };
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+  for (; c + 8 <= n; c += 8) {
+    const __m128 q0 = two(c), q1 = two(c + 2), q2 = two(c + 4), q3 = two(c + 6);
+    const __m256 a = _mm256_set_m128(_mm_shuffle_ps(q2, q3, 0x88), _mm_shuffle_ps(q0, q1, 0x88));
+    const __m256 b = _mm256_set_m128(_mm_shuffle_ps(q2, q3, 0xDD), _mm_shuffle_ps(q0, q1, 0xDD));
+    _mm256_store_ps(value + c, _mm256_add_ps(a, _mm256_mul_ps(b, _mm256_load_ps(frac + c))));
+  }
+#else
+  for (; c + 4 <= n; c += 4) {
+    const __m128 q0 = two(c), q1 = two(c + 2);
+    const __m128 a = _mm_shuffle_ps(q0, q1, 0x88), b = _mm_shuffle_ps(q0, q1, 0xDD);
+    _mm_store_ps(value + c, _mm_add_ps(a, _mm_mul_ps(b, _mm_load_ps(frac + c))));
+  }
+#endif
+#endif
+  for (; c < n; ++c) {
+    const float* p = samples + piece[c];
+    value[c] = p[0] + p[1] * frac[c];
+  }
+}
+
 // A force record in a register, and the two operations pass 5 needs on it: the same
 // IEEE additions and subtractions per component as three scalar ones.
 #if defined(__SSE2__)
@@ -450,10 +485,7 @@ void layerPairForces(const PairList::Layer& layer, const Index* __restrict list,
       frac[c] = t - static_cast<float>(k);
     }
     // 3. The sampled function (the one indirect read of the table).
-    for (std::uint32_t c = 0; c < n; ++c) {
-      const float* p = samples + piece[c];
-      value[c] = p[0] + p[1] * frac[c];
-    }
+    readTable(samples, piece, frac, value, n);
     // 4. The pair forces (SIMD): -F n, plus the velocity terms.
     for (std::uint32_t c = 0; c < n; ++c) {
       const float nx = dxs[c] * inv[c], ny = dys[c] * inv[c], nz = dzs[c] * inv[c];
