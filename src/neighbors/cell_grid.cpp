@@ -227,10 +227,8 @@ std::span<const SlotRange> CellGrid::ForwardRanges::of(std::size_t c) {
   std::size_t n = 0;
   // Appends a slot range, merged with the last one where they touch.
   const auto append = [&](SlotRange r) {
-    if (n > 0 && ranges_[n - 1].end == r.begin)
-      ranges_[n - 1].end = r.end;
-    else
-      ranges_[n++] = r;
+    if (n > 0 && ranges_[n - 1].end == r.begin) ranges_[n - 1].end = r.end;
+    else ranges_[n++] = r;
   };
   // The usual case, no offset wraps: the 13 cells are 5 rows of consecutive keys (x + 1
   // in the own row, x - 1 .. x + 1 in the 4 others), already in key order. One cursor

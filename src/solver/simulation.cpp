@@ -303,7 +303,7 @@ struct Simulation::ParticleOps {
   float e, mu;           // the walls' restitution and friction
   const std::array<float, 3>* wallLo;
   const std::array<float, 3>* wallHi;
-  bool uniformMass;                    // every material has mats[0]'s inverse mass
+  bool uniformMass;                     // every material has mats[0]'s inverse mass
   std::array<float, 3> gateLo, gateHi;  // a centre inside these touches no wall, whatever its material
 
   // v += (f / m + g) h for slots [from, to). Axis by axis through unaliased pointers, so that
@@ -316,8 +316,7 @@ struct Simulation::ParticleOps {
     alignas(32) float im[kRun];
     for (std::size_t r = from; r < to; r += kRun) {
       const std::size_t m = std::min(kRun, to - r);
-      if (uniformMass)
-        std::fill_n(im, m, mats[0].inverseMass);
+      if (uniformMass) std::fill_n(im, m, mats[0].inverseMass);
       else
         for (std::size_t k = 0; k < m; ++k) im[k] = mats[s.material[r + k]].inverseMass;
       if (m == kRun) {  // a known length: no remainder loop
@@ -332,8 +331,8 @@ struct Simulation::ParticleOps {
     }
   }
   template <float Force::*kAxis>
-  [[gnu::always_inline]] static void kickAxis(float* __restrict v, const Force* __restrict f, const float* __restrict im, float g, float h,
-                       std::size_t m) {
+  [[gnu::always_inline]] static void kickAxis(float* __restrict v, const Force* __restrict f,
+                                              const float* __restrict im, float g, float h, std::size_t m) {
     for (std::size_t k = 0; k < m; ++k) v[k] += (f[k].*kAxis * im[k] + g) * h;
   }
   // x += v dt for slots [from, to), axis by axis as the kick.
@@ -353,16 +352,19 @@ struct Simulation::ParticleOps {
       const std::size_t m = std::min(kRun, to - r);
       std::uint32_t near = 0;
       for (int a = 0; a < 3; ++a)
-        near |= m == kRun ? outside(p[a] + r, gateLo[a], gateHi[a], kRun) : outside(p[a] + r, gateLo[a], gateHi[a], m);
+        near |= m == kRun ? outside(p[a] + r, gateLo[a], gateHi[a], kRun)
+                          : outside(p[a] + r, gateLo[a], gateHi[a], m);
       if (near == 0) continue;
       for (std::size_t i = r; i < r + m; ++i) walls(i);
     }
   }
   // Inlined with m = kRun for whole runs: a loop of known length vectorises without a
   // remainder.
-  [[gnu::always_inline]] static std::uint32_t outside(const float* __restrict p, float lo, float hi, std::size_t m) {
+  [[gnu::always_inline]] static std::uint32_t outside(const float* __restrict p, float lo, float hi,
+                                                      std::size_t m) {
     std::uint32_t any = 0;
-    for (std::size_t k = 0; k < m; ++k) any |= static_cast<std::uint32_t>(p[k] < lo) | static_cast<std::uint32_t>(p[k] > hi);
+    for (std::size_t k = 0; k < m; ++k)
+      any |= static_cast<std::uint32_t>(p[k] < lo) | static_cast<std::uint32_t>(p[k] > hi);
     return any;
   }
   // Container walls: a particle's centre stays one radius inside. On contact the

@@ -80,8 +80,12 @@ TEST(ParticleStore, PermuteOfShiftedRunsAndStraysMovesEveryArrayTogether) {
     const std::uint32_t was = order[k];
     const float f = static_cast<float>(was);
     ASSERT_EQ(s.id[k], was) << k;
-    ASSERT_EQ(s.px[k], f); ASSERT_EQ(s.py[k], 10 + f); ASSERT_EQ(s.pz[k], 20 + f);
-    ASSERT_EQ(s.vx[k], 30 + f); ASSERT_EQ(s.vy[k], 40 + f); ASSERT_EQ(s.vz[k], 50 + f);
+    ASSERT_EQ(s.px[k], f);
+    ASSERT_EQ(s.py[k], 10 + f);
+    ASSERT_EQ(s.pz[k], 20 + f);
+    ASSERT_EQ(s.vx[k], 30 + f);
+    ASSERT_EQ(s.vy[k], 40 + f);
+    ASSERT_EQ(s.vz[k], 50 + f);
     ASSERT_EQ(s.material[k], was % 7);
     ASSERT_EQ(s.owner[k], was % 3);
   }
