@@ -217,8 +217,20 @@ std::uintmax_t checkReadable(const fs::path& file, const std::string& name) {
 void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_t size) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
-  // assimp recognises PLY by its first line whatever the file's extension.
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
+  // assimp reads a .ply file as PLY whatever it holds, and recognises PLY by a "ply" in
+  // any case whatever the extension; its reader then hung on a header that began "Ply"
+  // (found by the fuzzer: fuzz/regressions/mesh_loader/ply-capital-magic-hang). So a
+  // file that is PLY to assimp must begin with the exact magic line, and its header is
+  // checked.
+  if (!std::getline(in, line)) return;
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  std::string magic = line.substr(0, 3);
+  std::transform(magic.begin(), magic.end(), magic.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (ext != ".ply" && magic != "ply") return;
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+  if (line != "ply")
+    throw InputError({name, 1, "mesh"}, "a PLY file's first line is not 'ply'", "the line 'ply', in lower case");
   std::string element;
   std::uintmax_t count = 0;
   std::uintmax_t declared = 0;
