@@ -211,6 +211,12 @@ std::uintmax_t checkReadable(const fs::path& file, const std::string& name) {
   return size;
 }
 
+/// `text` in lower case (ASCII): file extensions and magic words.
+std::string lowerCase(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
 /// assimp's PLY reader reserves memory for the element counts the header declares, so a
 /// few-byte file claiming billions of vertices would exhaust memory. Every element with
 /// a property takes at least one byte, so the counts cannot add up to more than the file.
@@ -223,11 +229,7 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
   // file that is PLY to assimp must begin with the exact magic line, and its header is
   // checked.
   if (!std::getline(in, line)) return;
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  std::string magic = line.substr(0, 3);
-  std::transform(magic.begin(), magic.end(), magic.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (ext != ".ply" && magic != "ply") return;
+  if (lowerCase(file.extension().string()) != ".ply" && lowerCase(line.substr(0, 3)) != "ply") return;
   while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
   if (line != "ply")
     throw InputError({name, 1, "mesh"}, "a PLY file's first line is not 'ply'", "the line 'ply', in lower case");
@@ -315,9 +317,7 @@ void checkPlyCounts(const fs::path& file, const std::string& name, std::uintmax_
 /// and fail with a puzzling message. ASCII files (starting with "solid" and holding
 /// "facet") are left to assimp.
 void checkStlCounts(const fs::path& file, const std::string& name, std::uintmax_t size) {
-  std::string ext = file.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".stl" || size < 84) return;
+  if (lowerCase(file.extension().string()) != ".stl" || size < 84) return;
   std::ifstream in(file, std::ios::binary);
   std::array<char, 84> head{};
   if (!in.read(head.data(), head.size())) return;
