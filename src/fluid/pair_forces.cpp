@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <type_traits>
 #include <vector>
 
@@ -22,6 +23,14 @@
 #else
 #define SOFTSUB_AVX2_CLONE 0
 #define SOFTSUB_AVX2_ONLY(call) (void)0
+#endif
+
+// The closed-form kernel passes 8-lane vectors (pair_kernels.inl) by value, which GCC
+// warns about in the baseline copy (its ABI has no AVX). They are internal helpers,
+// inlined, in an unnamed namespace: no call crosses that ABI. GCC reports the warning
+// at the end of the file, so it is off for the whole file.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 
 namespace softsub::fluid {
@@ -60,12 +69,14 @@ std::atomic<Simd>& simdChoice() {
   return choice;
 }
 
-// The kernel for one layer, in the copy `simd` selects.
-void layerForces(Simd simd, const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
+// The kernel for one layer, in the copy `simd` selects (sums: the thread's buffer for
+// the closed-form kernel).
+void layerForces(Simd simd, const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s,
+                 std::vector<float>& sums) {
   if (simd == Simd::Avx2)
-    SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s));
+    SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s, sums));
   else
-    baseline::layerForcesOf(layer, table, s);
+    baseline::layerForcesOf(layer, table, s, sums);
 }
 
 }  // namespace
@@ -88,6 +99,7 @@ struct PairList::Scratch {
     std::vector<std::uint32_t> kept;  // one particle's partners when the list is nearly full
     std::vector<neighbors::SlotRange> ranges;  // the forward ranges of one layer's cells
     std::vector<std::uint32_t> rangeStart;     // each cell's first in ranges
+    std::vector<float> sums;  // the closed-form kernel's force sums over a layer's span
   };
   tbb::enumerable_thread_specific<Buffers> perThread;
 };
@@ -101,24 +113,32 @@ std::vector<std::uint32_t> PairList::partners(std::size_t i) const {
   const auto end = layers_.begin() + static_cast<std::ptrdiff_t>(layerCount_);
   const auto it = std::upper_bound(layers_.begin(), end, i, [](std::size_t v, const Layer& l) { return v < l.slots.end; });
   if (it == end || i < it->slots.begin) return {};
-  const std::size_t k = i - it->slots.begin;
   std::vector<std::uint32_t> out;
-  for (std::uint32_t q = it->start[k]; q < it->start[k + 1]; ++q) out.push_back(it->partner(q));
+  it->forEachPartner(static_cast<std::uint32_t>(i - it->slots.begin), [&](std::uint32_t j) { out.push_back(j); });
   return out;
 }
 
 std::size_t PairList::pairCount() const {
   std::size_t n = 0;
-  for (std::size_t l = 0; l < layerCount_; ++l) n += layers_[l].size();
+  for (std::size_t l = 0; l < layerCount_; ++l) {
+    const Layer& layer = layers_[l];
+    if (!layer.grouped) {
+      n += layer.size();
+      continue;
+    }
+    for (std::size_t q = 0; q < layer.size(); ++q)
+      n += static_cast<std::size_t>(__builtin_popcount(layer.groups[q] & 255u));
+  }
   return n;
 }
 
 std::size_t PairList::memoryBytes() const {
   std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
-  for (const Layer& l : layers_) b += (l.start.capacity() + l.far.capacity()) * 4 + l.near.capacity() * 2;
+  for (const Layer& l : layers_)
+    b += (l.start.capacity() + l.far.capacity() + l.groups.capacity()) * 4 + l.near.capacity() * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.entry.capacity() +
-          s.owner.capacity() + s.kept.capacity() + s.rangeStart.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
+          s.owner.capacity() + s.kept.capacity() + s.rangeStart.capacity() + s.sums.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
   return b;
 }
 
@@ -144,6 +164,8 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   layerCount_ = gridLayers.size();
   if (layers_.size() < layerCount_) layers_.resize(layerCount_);
   phases_ = grid.layersByPhase();
+  // Groups of 8 slots for the closed-form kernel: a group's index has 24 bits.
+  grouped_ = options.closedForm && table.closedFormLj().has_value() && s.size() < (std::size_t{1} << 27);
   // Cells, and so layers, come in slot order: a layer is a run of cells.
   firstCell_.resize(layerCount_ + 1);  // keeps its memory: no allocation once warmed up
   {
@@ -158,10 +180,10 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   auto buildOne = [&](std::size_t l, Scratch::Buffers& buf, neighbors::CellGrid::ForwardRanges& forwardRanges) {
     if (simd == Simd::Avx2)
       SOFTSUB_AVX2_ONLY(avx2::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges,
-                                         grid, s, options, rowCut2_.data()));
+                                         grid, s, options, rowCut2_.data(), grouped_));
     else
       baseline::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges, grid, s,
-                           options, rowCut2_.data());
+                           options, rowCut2_.data(), grouped_);
   };
   if (forces == nullptr) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {
@@ -178,7 +200,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       for (std::size_t p = range.begin(); p != range.end(); ++p) {
         const std::size_t l = phase[p];
         buildOne(l, buf, forwardRanges);
-        layerForces(simd, layers_[l], table, *forces);
+        layerForces(simd, layers_[l], table, *forces, buf.sums);
       }
     });
   }
@@ -191,7 +213,8 @@ void accumulatePairForces(const PairList& list, const forces::InteractionTable& 
   // layer of its phase touches; each slot's force is summed in slot and phase order.
   for (const std::vector<std::uint32_t>& phase : list.phases()) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, phase.size(), 1), [&](const auto& range) {
-      for (std::size_t p = range.begin(); p != range.end(); ++p) layerForces(simd, layers[phase[p]], table, s);
+      std::vector<float>& sums = list.scratch_->perThread.local().sums;
+      for (std::size_t p = range.begin(); p != range.end(); ++p) layerForces(simd, layers[phase[p]], table, s, sums);
     });
   }
 }

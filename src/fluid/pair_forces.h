@@ -27,6 +27,10 @@ struct ListOptions {
   /// 16-bit offsets (PairList::Layer); at most 65,536. Tests lower it to exercise the
   /// 32-bit form on small inputs.
   std::uint32_t narrowSpan = 65536;
+  /// Where the table has a closed form the kernel evaluates in registers
+  /// (InteractionTable::closedFormLj), list groups of 8 slots (Layer::grouped) for that
+  /// kernel. Tests turn it off to run the table kernel on such a table.
+  bool closedForm = true;
 };
 
 class PairList {
@@ -49,17 +53,17 @@ class PairList {
   /// Partners of slot i, as slots (finds i's layer and copies: for tests, not hot loops).
   [[nodiscard]] std::vector<std::uint32_t> partners(std::size_t i) const;
   /// Calls fn(i, j) for every listed pair, slot i ascending, each i's partners in list
-  /// order.
+  /// order (grouped layers: group by group, each group's slots ascending).
   template <class Fn>
   void forEachPair(Fn&& fn) const {
     for (std::size_t l = 0; l < layerCount_; ++l) {
       const Layer& layer = layers_[l];
-      for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i) {
-        const std::uint32_t k = i - layer.slots.begin;
-        for (std::uint32_t q = layer.start[k]; q < layer.start[k + 1]; ++q) fn(i, layer.partner(q));
-      }
+      for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i)
+        layer.forEachPartner(i - layer.slots.begin, [&](std::uint32_t j) { fn(i, j); });
     }
   }
+  /// Whether the last build listed groups for the closed-form kernel (Layer::grouped).
+  [[nodiscard]] bool grouped() const { return grouped_; }
   /// Number of listed pairs.
   [[nodiscard]] std::size_t pairCount() const;
   /// Bytes reserved.
@@ -71,17 +75,40 @@ class PairList {
   /// of its first slot; they are then kept as 16-bit offsets from it (`narrow`), which
   /// halves the list's memory and the kernel's reads of it. Layers whose partners reach
   /// further (very large layers, the wrap-around of the grid) keep 32-bit slots.
+  ///
+  /// Grouped layers (the closed-form kernel, ListOptions::closedForm) list instead, per
+  /// slot, the aligned groups of 8 slots [8 g, 8 g + 8) holding its partners, one 32-bit
+  /// entry each: g << 8 | the lanes that are partners (bit c: slot 8 g + c). The kernel
+  /// evaluates a group's 8 lanes at once from the store's arrays, with no gather, and
+  /// masks the lanes that are not partners. `span` is then the slots the layer's pairs
+  /// touch; in narrow layers the kernel sums their forces in a buffer of that size.
   struct Layer {
     neighbors::SlotRange slots;
     std::vector<std::uint32_t> start;
     bool narrow = true;
-    std::vector<std::uint16_t> near;  ///< narrow: partner slot - slots.begin
-    std::vector<std::uint32_t> far;   ///< otherwise: partner slot
-    /// The slot of list entry q.
+    bool grouped = false;
+    std::vector<std::uint16_t> near;    ///< narrow, not grouped: partner slot - slots.begin
+    std::vector<std::uint32_t> far;     ///< not narrow, not grouped: partner slot
+    std::vector<std::uint32_t> groups;  ///< grouped: g << 8 | partner lanes
+    neighbors::SlotRange span;          ///< grouped: lowest and highest partner, i included
+    /// The slot of list entry q (layers that are not grouped).
     [[nodiscard]] std::uint32_t partner(std::uint32_t q) const {
       return narrow ? slots.begin + near[q] : far[q];
     }
-    /// Number of list entries.
+    /// Calls fn(j) for each partner of slot slots.begin + k, in list order.
+    template <class Fn>
+    void forEachPartner(std::uint32_t k, Fn&& fn) const {
+      for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
+        if (!grouped) {
+          fn(partner(q));
+          continue;
+        }
+        const std::uint32_t e = groups[q];
+        for (std::uint32_t bits = e & 255u; bits != 0; bits &= bits - 1)
+          fn((e >> 8) * 8 + static_cast<std::uint32_t>(__builtin_ctz(bits)));
+      }
+    }
+    /// Number of list entries (pairs; groups in grouped layers).
     [[nodiscard]] std::size_t size() const { return start.empty() ? 0 : start.back(); }
   };
   [[nodiscard]] std::span<const Layer> layers() const { return {layers_.data(), layerCount_}; }
@@ -96,7 +123,9 @@ class PairList {
              float skin, const ListOptions& options, ParticleStore* forces);
   std::vector<Layer> layers_;
   std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
+  friend void accumulatePairForces(const PairList&, const forces::InteractionTable&, ParticleStore&);
   std::vector<std::vector<std::uint32_t>> phases_;
+  bool grouped_ = false;
   std::vector<float> rowCut2_;  // each material row's squared list radius
   std::vector<std::uint32_t> firstCell_;  // each layer's first cell (build scratch)
   std::unique_ptr<Scratch> scratch_;
@@ -105,8 +134,9 @@ class PairList {
 /// Adds to store.f the forces of every listed pair closer than its cutoff (Newton's
 /// third law: what i gets, j gets with the opposite sign):
 ///   f_i += -F(r) n + damping (v_j - v_i) + k ((v_j - v_i) . n) n,  n = (x_j - x_i) / r
-/// with F the pair's sampled function (positive = repulsion). No branch on function
-/// kind, no virtual call, no allocation once warmed up. Runs the list's layers in
+/// with F the pair's sampled function (positive = repulsion), or, for a grouped list,
+/// the table's closed form (InteractionTable::closedFormLj). No branch on function kind
+/// per pair, no virtual call, no allocation once warmed up. Runs the list's layers in
 /// parallel phase by phase; every force is summed in the same order whatever the number
 /// of threads, so the result is bitwise the same for any thread count.
 void accumulatePairForces(const PairList& list, const forces::InteractionTable& table,

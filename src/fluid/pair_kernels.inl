@@ -188,12 +188,52 @@ inline void copyCandidates(const float* __restrict px, const float* __restrict p
   }
 }
 
+// The 8 lanes of the aligned group of slots [8 g, 8 g + 8) that lie in [b, e).
+inline std::uint32_t laneRange(std::uint32_t g8, std::uint32_t b, std::uint32_t e) {
+  const std::uint32_t from = b > g8 ? b - g8 : 0, to = e < g8 + 8 ? e - g8 : 8;
+  return (0xFFu << from) & (0xFFu >> (8 - to));
+}
+
+// A grouped layer's list (PairList::Layer::grouped) for slot i: the groups of 8 slots
+// that hold its partners among [b, e) (one candidate range: the rest of i's cell, or a
+// forward range), each with the lanes that are partners, written from out[listed] on;
+// returns the new length. out has room for one entry per group the range touches. The
+// groups are tested straight from the store's arrays, 8 slots at a time with the same
+// distance test as filter(), so a grouped list lists exactly the pairs a plain one
+// does. A group that two ranges share (one ends and the next begins inside it) is
+// listed twice with disjoint lanes: each pair is still evaluated once.
+inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
+                                std::uint32_t* __restrict out, std::uint32_t listed) {
+  const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
+  const auto n = static_cast<std::uint32_t>(s.size());
+  const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
+  for (std::uint32_t g8 = b & ~7u; g8 < e; g8 += 8) {
+    std::uint32_t near;
+    if (g8 + 8 <= n) {
+      near = nearMask(store, g8, xi, yi, zi, cut2);
+    } else {  // the store's last, partial group
+      float x[8] = {}, y[8] = {}, z[8] = {};
+      for (std::uint32_t c = 0; g8 + c < n; ++c) {
+        x[c] = s.px[g8 + c];
+        y[c] = s.py[g8 + c];
+        z[c] = s.pz[g8 + c];
+      }
+      near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
+    }
+    const std::uint32_t lanes = near & laneRange(g8, b, e);
+    out[listed] = g8 << 5 | lanes;  // (g8 / 8) << 8
+    listed += lanes != 0 ? 1u : 0u;
+  }
+  return listed;
+}
+
 template <class Scratch>
 void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t cellBegin, std::size_t cellEnd,
                 Scratch& buf, neighbors::CellGrid::ForwardRanges& forwardRanges, const neighbors::CellGrid& grid,
-                const ParticleStore& s, const ListOptions& options, const float* rowCut2) {
+                const ParticleStore& s, const ListOptions& options, const float* rowCut2, bool grouped) {
   const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
   layer.slots = slots;
+  layer.grouped = grouped;
   const std::size_t rows = layer.slots.end - layer.slots.begin;
   if (layer.start.capacity() < rows + 1) layer.start.reserve(rows + 1 + rows / 8);  // see grow()
   layer.start.resize(rows + 1);
@@ -215,6 +255,7 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   buf.rangeStart.push_back(static_cast<std::uint32_t>(buf.ranges.size()));
   layer.narrow = lowest >= layer.slots.begin &&
                  highest - layer.slots.begin <= std::min<std::uint32_t>(options.narrowSpan, 65536);
+  layer.span = {lowest, highest};
   // The list is written in place: its vector is used up to its capacity, grown when a
   // particle's candidates might not fit, and cut to what was listed at the end.
   auto fill = [&](auto& out, std::uint32_t entryBase) {
@@ -270,13 +311,39 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
     trim(out, listed);
     return listed;
   };
-  const std::uint32_t listed = layer.narrow ? fill(layer.near, layer.slots.begin) : fill(layer.far, 0u);
-  // The other encoding's memory is given back (it is empty unless the layer just
+  // Grouped: no candidate buffer; each candidate range is tested group by group in the
+  // store (listGroups). Rigid bodies never make a grouped list (one fluid), so no owners.
+  auto fillGroups = [&](std::vector<std::uint32_t>& out) {
+    out.resize(out.capacity());
+    std::uint32_t listed = 0;
+    for (std::size_t c = cellBegin; c < cellEnd; ++c) {
+      const neighbors::SlotRange own = grid.cell(c);
+      const std::size_t cl = c - cellBegin;
+      const std::span<const neighbors::SlotRange> forward(buf.ranges.data() + buf.rangeStart[cl],
+                                                          buf.ranges.data() + buf.rangeStart[cl + 1]);
+      // The most groups one particle of the cell can list: each range's groups.
+      std::uint32_t most = (own.end - own.begin) / 8 + 2;
+      for (const neighbors::SlotRange& r : forward) most += (r.end - r.begin) / 8 + 2;
+      for (std::uint32_t i = own.begin; i < own.end; ++i) {
+        layer.start[i - layer.slots.begin] = listed;
+        if (out.size() < listed + most) grow(out, listed + most);
+        const float cut2 = rowCut2[s.material[i]];
+        listed = listGroups(s, i, cut2, i + 1, own.end, out.data(), listed);
+        for (const neighbors::SlotRange& r : forward) listed = listGroups(s, i, cut2, r.begin, r.end, out.data(), listed);
+      }
+    }
+    out.resize(listed);
+    trim(out, listed);
+    return listed;
+  };
+  const std::uint32_t listed = grouped        ? fillGroups(layer.groups)
+                               : layer.narrow ? fill(layer.near, layer.slots.begin)
+                                              : fill(layer.far, 0u);
+  // The other encodings' memory is given back (it is empty unless the layer just
   // changed encoding: a layer near the 65,536-slot span would otherwise keep both).
-  if (layer.narrow)
-    std::vector<std::uint32_t>().swap(layer.far);
-  else
-    std::vector<std::uint16_t>().swap(layer.near);
+  if (grouped || !layer.narrow) std::vector<std::uint16_t>().swap(layer.near);
+  if (grouped || layer.narrow) std::vector<std::uint32_t>().swap(layer.far);
+  if (!grouped) std::vector<std::uint32_t>().swap(layer.groups);
   layer.start.back() = listed;
   trim(layer.start, rows + 1);
 }
@@ -551,8 +618,152 @@ void layerForces(const PairList::Layer& layer, const Index* list, std::uint32_t 
   }
 }
 
-// The kernel for one layer, in its list encoding.
-inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s) {
+// The closed-form kernel's vectors, in GCC's vector extension: 8 lanes in the AVX2
+// copy, 4 in the baseline one, which takes a group of 8 slots in two parts. The same
+// IEEE operations per lane in both, so the same bits.
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+inline constexpr std::uint32_t kLanes = 8;
+typedef float Vf __attribute__((vector_size(32)));
+typedef std::int32_t Vi __attribute__((vector_size(32)));
+#else
+inline constexpr std::uint32_t kLanes = 4;
+typedef float Vf __attribute__((vector_size(16)));
+typedef std::int32_t Vi __attribute__((vector_size(16)));
+#endif
+inline constexpr std::uint32_t kParts = 8 / kLanes;
+
+inline Vf loadV(const float* p) {
+  Vf v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void storeV(float* p, Vf v) { std::memcpy(p, &v, sizeof v); }
+inline Vf selectV(Vi mask, Vf a, Vf b) {  // a where mask, else b
+  return reinterpret_cast<Vf>((reinterpret_cast<Vi>(a) & mask) | (reinterpret_cast<Vi>(b) & ~mask));
+}
+// A group's 8 lanes summed in one fixed order, whatever the parts.
+inline float sumLanes(const Vf* v) {
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+  return ((v[0][0] + v[0][4]) + (v[0][2] + v[0][6])) + ((v[0][1] + v[0][5]) + (v[0][3] + v[0][7]));
+#else
+  const Vf t = v[0] + v[1];
+  return (t[0] + t[2]) + (t[1] + t[3]);
+#endif
+}
+
+// The pairs of one grouped layer (PairList::Layer::grouped) with the true Lennard-Jones
+// force in closed form (InteractionTable::closedFormLj): per slot i, each listed group
+// of 8 slots is evaluated in 8-lane arithmetic straight from the store's position
+// arrays (no gather, no table), the lanes that are not partners or lie beyond the
+// cutoff masked to exactly 0. Why: the table kernel spends most of its instructions
+// gathering a partner's position and scattering its force (docs/benchmarks.md); here a
+// group costs three loads and, with kSums, three read-modify-writes of a buffer in the
+// same layout, whatever its number of partners (about 3 of 8 in a dense liquid).
+// kSums (narrow layers): the forces are summed in `sums` (3 arrays of `stride` floats
+// over the layer's span, from its first slot rounded down to 8) and added to the store
+// after the layer, in slot order; otherwise (layers whose pairs reach across the grid's
+// wrap) straight to the store, partner by partner. Each slot's sum runs in a fixed
+// order: pair by pair in list order, i's own sum (its 8 lanes added in a fixed order)
+// after its last pair; the same whatever the number of threads.
+template <bool kSums>
+void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
+                       float* __restrict sums, std::size_t stride) {
+  const float* __restrict px = s.px.data();
+  const float* __restrict py = s.py.data();
+  const float* __restrict pz = s.pz.data();
+  Force* __restrict f = s.f.data();
+  const std::uint32_t* __restrict start = layer.start.data();
+  const std::uint32_t* __restrict groups = layer.groups.data();
+  const auto n = static_cast<std::uint32_t>(s.size());
+  const std::uint32_t lo = layer.span.begin & ~7u;
+  float* __restrict sx = sums;
+  float* __restrict sy = sums + stride;
+  float* __restrict sz = sums + 2 * stride;
+  if constexpr (kSums)
+    for (std::size_t t = 0; t < 3 * stride; ++t) sums[t] = 0.0f;
+  const Vf a = Vf{} + lj.a, b = Vf{} + lj.b, sigma2 = Vf{} + lj.sigma2;
+  const Vf cutoff2 = Vf{} + lj.cutoff2, minR2 = Vf{} + lj.minR2;
+  Vi lanes[kParts];
+  for (std::uint32_t h = 0; h < kParts; ++h)
+    for (std::uint32_t c = 0; c < kLanes; ++c) lanes[h][c] = 1 << (h * kLanes + c);
+  float tx[8], ty[8], tz[8];  // the store's last group, padded
+  const std::uint32_t rows = layer.slots.end - layer.slots.begin;
+  for (std::uint32_t k = 0; k < rows; ++k) {
+    const std::uint32_t i = layer.slots.begin + k;
+    const Vf xi = Vf{} + px[i], yi = Vf{} + py[i], zi = Vf{} + pz[i];
+    Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
+    for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
+      const std::uint32_t e = groups[q], base = (e >> 8) * 8;
+      const float *xs = px + base, *ys = py + base, *zs = pz + base;
+      if (base + 8 > n) {  // missing lanes are never partners
+        for (std::uint32_t c = 0; c < 8; ++c) {
+          tx[c] = base + c < n ? px[base + c] : 0.0f;
+          ty[c] = base + c < n ? py[base + c] : 0.0f;
+          tz[c] = base + c < n ? pz[base + c] : 0.0f;
+        }
+        xs = tx;
+        ys = ty;
+        zs = tz;
+      }
+      const Vi bits = Vi{} + static_cast<std::int32_t>(e & 255u);
+      for (std::uint32_t h = 0; h < kParts; ++h) {
+        const std::uint32_t o = h * kLanes;
+        const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
+        const Vf r2 = dx * dx + dy * dy + dz * dz;
+        const Vi in = ((bits & lanes[h]) != 0) & (r2 < cutoff2);
+        const Vf u = sigma2 / selectV(r2 < minR2, minR2, r2);
+        const Vf u3 = u * u * u;
+        const Vf fr = reinterpret_cast<Vf>(reinterpret_cast<Vi>((a * u3 - b) * u3 * u) & in);  // F(r) / r
+        const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;  // the force on j
+        ax[h] += gx;
+        ay[h] += gy;
+        az[h] += gz;
+        if constexpr (kSums) {
+          const std::uint32_t p = base + o - lo;
+          storeV(sx + p, loadV(sx + p) + gx);
+          storeV(sy + p, loadV(sy + p) + gy);
+          storeV(sz + p, loadV(sz + p) + gz);
+        } else {
+          for (std::uint32_t c = 0; c < kLanes; ++c)
+            if ((e >> (o + c)) & 1u) {
+              f[base + o + c].x += gx[c];
+              f[base + o + c].y += gy[c];
+              f[base + o + c].z += gz[c];
+            }
+        }
+      }
+    }
+    if constexpr (kSums) {
+      sx[i - lo] -= sumLanes(ax);
+      sy[i - lo] -= sumLanes(ay);
+      sz[i - lo] -= sumLanes(az);
+    } else {
+      f[i].x -= sumLanes(ax);
+      f[i].y -= sumLanes(ay);
+      f[i].z -= sumLanes(az);
+    }
+  }
+  if constexpr (kSums)
+    for (std::uint32_t t = layer.span.begin; t < layer.span.end; ++t) {
+      f[t].x += sx[t - lo];
+      f[t].y += sy[t - lo];
+      f[t].z += sz[t - lo];
+    }
+}
+
+// The kernel for one layer, in its list encoding. sums: the thread's buffer for the
+// closed-form kernel, grown here as needed.
+inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s,
+                          std::vector<float>& sums) {
+  if (layer.grouped) {
+    const forces::ClosedFormLj& lj = *table.closedFormLj();
+    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr, 0);
+    const std::size_t stride = ((layer.span.end + 7u) & ~7u) - (layer.span.begin & ~7u);
+    if (sums.size() < 3 * stride + 8) sums.resize(3 * stride + 8);
+    // 32-byte aligned, so that a group's 8 sums are one aligned vector.
+    float* at = sums.data() + ((0u - reinterpret_cast<std::uintptr_t>(sums.data()) / sizeof(float)) & 7u);
+    return groupedPairForces<true>(layer, lj, s, at, stride);
+  }
   if (layer.narrow)
     layerForces(layer, layer.near.data(), layer.slots.begin, table, s);
   else

@@ -35,6 +35,31 @@ SampledFunction sample(const PairFunction& f, int intervals) {
   return s;
 }
 
+namespace {
+// InteractionTable::closedFormLj() for a table whose one interaction is `in`.
+std::optional<ClosedFormLj> closedFormOf(const Interaction& in) {
+  const auto* lj = std::get_if<LennardJonesForce>(&in.function);
+  if (lj == nullptr || in.damping != 0 || in.relativeVelocity != 0) return std::nullopt;
+  if (!(lj->epsilon > 0 && lj->sigma > 0 && lj->cutoff > 0)) return std::nullopt;
+  ClosedFormLj c;
+  const double s2 = lj->sigma * lj->sigma;
+  c.a = static_cast<float>(48.0 * lj->epsilon / s2);
+  c.b = static_cast<float>(24.0 * lj->epsilon / s2);
+  c.sigma2 = static_cast<float>(s2);
+  c.cutoff2 = static_cast<float>(lj->cutoff * lj->cutoff);
+  // The distance where the formula reaches its clamp: F falls with r below sigma, so
+  // bisect on (0, sigma] for the largest r whose F is still clamped.
+  const double limit = evaluate(in.function, 0.0);
+  double lo = 0, hi = lj->sigma;
+  for (int k = 0; k < 200 && hi - lo > 1e-12 * lj->sigma; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (evaluate(in.function, mid) >= limit ? lo : hi) = mid;
+  }
+  c.minR2 = static_cast<float>(hi * hi);
+  return c;
+}
+}  // namespace
+
 InteractionTable::InteractionTable(std::size_t materials, int intervals)
     : materials_(materials),
       intervals_(intervals),
@@ -86,6 +111,7 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
     for (std::size_t c = 0; c < materials_; ++c)
       rowCutoff2_[r] = std::max(rowCutoff2_[r], entries_[r * materials_ + c].cutoff2);
   }
+  closedForm_ = materials_ == 1 ? closedFormOf(described_.front()) : std::nullopt;
 }
 
 double InteractionTable::maxCutoff() const {
@@ -93,6 +119,7 @@ double InteractionTable::maxCutoff() const {
   for (const PairEntry& e : entries_) m = std::max(m, std::sqrt(static_cast<double>(e.cutoff2)));
   return m;
 }
+
 
 double InteractionTable::sampledAt(std::size_t a, std::size_t b, double r) const {
   const PairEntry& e = entry(a, b);

@@ -2,6 +2,7 @@
 /// Sampled pair functions and the material x material table of interactions (the
 /// seed's "dictionary of interactions"), owned by a Model: never a singleton.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,6 +40,19 @@ struct PairEntry {
   float relativeVelocity = 0;  ///< force += k * ((v_j - v_i) . n) n
   std::uint32_t offset = 0;    ///< start of this function's pieces in samples()
   std::uint32_t lastPiece = 0; ///< intervals - 1 (clamps float rounding at the cutoff)
+};
+
+/// The true Lennard-Jones force (LennardJonesForce) in closed form, for the grouped pair
+/// kernel (fluid::PairList, docs/architecture.md "Two kernels"): with
+/// u = sigma2 / max(r^2, minR2), F(r) / r = (a u^3 - b) u^3 u, and zero from cutoff2 on.
+/// minR2 is where |F| reaches the formula's clamp (forces::evaluate): below it the force
+/// is held at that distance's, as the clamp holds it.
+struct ClosedFormLj {
+  float a = 0;        ///< 48 epsilon / sigma^2
+  float b = 0;        ///< 24 epsilon / sigma^2
+  float sigma2 = 0;   ///< sigma^2
+  float cutoff2 = 0;  ///< squared cutoff
+  float minR2 = 0;    ///< squared distance below which r^2 is taken as this
 };
 
 /// What a pair of materials does to each other, before sampling.
@@ -85,6 +99,11 @@ class InteractionTable {
   [[nodiscard]] bool hasRelativeVelocity() const { return relativeEntries_ > 0; }
   /// The longest cutoff of any pair (the grid's cell size is this plus the list skin).
   [[nodiscard]] double maxCutoff() const;
+  /// The closed form of the table's one interaction when the kernel can evaluate it in
+  /// registers instead of reading the table: one material, whose own function is the
+  /// true Lennard-Jones force (epsilon, sigma and cutoff > 0) with no velocity terms (a
+  /// physically based liquid such as LAMMPS's LJ benchmark). Otherwise nothing.
+  [[nodiscard]] const std::optional<ClosedFormLj>& closedFormLj() const { return closedForm_; }
   /// The sampled function of (a, b) evaluated at r, as the kernel does.
   [[nodiscard]] double sampledAt(std::size_t a, std::size_t b, double r) const;
 
@@ -99,6 +118,7 @@ class InteractionTable {
   std::size_t velocityEntries_ = 0;  // entries with a damping or relative-velocity term
   std::size_t relativeEntries_ = 0;  // entries with a relative-velocity term
   std::vector<float> rowCutoff2_;
+  std::optional<ClosedFormLj> closedForm_;  // see closedFormLj()
   std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
 };
 

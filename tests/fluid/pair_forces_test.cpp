@@ -1,6 +1,7 @@
 // The pair kernel against a double-precision brute-force sum from the formulas.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <tbb/global_control.h>
@@ -234,8 +235,10 @@ TEST(PairList, SixteenAndThirtyTwoBitEntriesGiveTheSameForces) {
     neighbors::CellGrid grid;
     grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
     PairList narrow, wide;
-    narrow.build(grid, table, s, skin);
-    ListOptions wideOptions;
+    ListOptions narrowOptions;
+    narrowOptions.closedForm = false;  // the table kernel's encodings (grouped lists: below)
+    narrow.build(grid, table, s, skin, narrowOptions);
+    ListOptions wideOptions = narrowOptions;
     wideOptions.narrowSpan = 0;
     wide.build(grid, table, s, skin, wideOptions);
     std::size_t narrowLayers = 0;
@@ -311,7 +314,10 @@ TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
       neighbors::CellGrid grid;
       grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
       PairList list;
-      list.build(grid, table, s, skin);
+      ListOptions options;
+      options.closedForm = false;  // the table kernel (the closed-form one: below)
+      list.build(grid, table, s, skin, options);
+      ASSERT_FALSE(list.grouped());
       ParticleStore a = s, b = s;
       zeroForces(a);
       zeroForces(b);
@@ -544,6 +550,197 @@ TEST(PairList, GivesBackMemoryWhenTheParticlesSpreadOut) {
       EXPECT_LT(dx * dx + dy * dy + dz * dz, 1.1f * 1.1f);
     }
   }
+}
+
+// The true Lennard-Jones force alone, with no velocity terms: the table the closed-form
+// kernel serves (InteractionTable::closedFormLj).
+forces::InteractionTable ljTable(double sigma = 0.8, double cutoff = 2.0) {
+  forces::InteractionTable t(1);
+  t.set(0, 0, {forces::LennardJonesForce{1, sigma, cutoff}, 0, 0});
+  return t;
+}
+
+// The sorted partners of every slot (a grouped list orders them by group).
+std::vector<std::vector<std::uint32_t>> sortedPartners(const PairList& list, std::size_t n) {
+  std::vector<std::vector<std::uint32_t>> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = list.partners(i);
+    std::sort(out[i].begin(), out[i].end());
+  }
+  return out;
+}
+
+// Which tables get the closed form: only one material whose function is the true LJ
+// force with no velocity term, and its constants are the formula's.
+TEST(ClosedForm, OnlyTheLennardJonesForceAloneHasOne) {
+  const forces::InteractionTable lj = ljTable(0.8, 2.0);
+  ASSERT_TRUE(lj.closedFormLj().has_value());
+  const forces::ClosedFormLj& c = *lj.closedFormLj();
+  EXPECT_FLOAT_EQ(c.a, 48.0f / 0.64f);
+  EXPECT_FLOAT_EQ(c.b, 24.0f / 0.64f);
+  EXPECT_FLOAT_EQ(c.sigma2, 0.64f);
+  EXPECT_FLOAT_EQ(c.cutoff2, 4.0f);
+  // minR2 is where the formula's clamp begins: the force just above it is below the
+  // clamp, and at it the closed form gives about the clamp.
+  const double rMin = std::sqrt(static_cast<double>(c.minR2));
+  const double limit = forces::evaluate(lj.interaction(0, 0).function, 0.0);
+  EXPECT_LT(forces::evaluate(lj.interaction(0, 0).function, rMin * 1.001), limit);
+  EXPECT_NEAR(forces::evaluate(lj.interaction(0, 0).function, rMin * 0.999), limit, 0);
+  forces::InteractionTable damped(1);
+  damped.set(0, 0, {forces::LennardJonesForce{1, 0.8, 2.0}, 0.5, 0});
+  EXPECT_FALSE(damped.closedFormLj().has_value());
+  forces::InteractionTable seed(1);
+  seed.set(0, 0, {ownFunction(FluidParams{}), 0, 0});
+  EXPECT_FALSE(seed.closedFormLj().has_value());
+  EXPECT_FALSE(threeMaterials().closedFormLj().has_value());
+  // A table reset to another function loses it.
+  forces::InteractionTable reset = ljTable();
+  reset.set(0, 0, {forces::Linear{5, 1, 0, 5}, 0, 0});
+  EXPECT_FALSE(reset.closedFormLj().has_value());
+}
+
+// A grouped list lists exactly the pairs a plain one does (the same distance test), in
+// both copies, on dense and sparse clouds whose size is not a multiple of 8 (the store's
+// last group is partial), and never lists a slot twice.
+TEST(ClosedForm, GroupedListHoldsExactlyThePlainListsPairs) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable();
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    for (const float hi : {3.0f, 6.0f}) {
+      ParticleStore s = scenarios::randomCloud(2503, -hi, hi, 0, 1, 17);
+      const float skin = 0.3f;
+      neighbors::CellGrid grid;
+      grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+      PairList grouped, plain;
+      grouped.build(grid, table, s, skin);
+      ListOptions options;
+      options.closedForm = false;
+      plain.build(grid, table, s, skin, options);
+      ASSERT_TRUE(grouped.grouped());
+      ASSERT_FALSE(plain.grouped());
+      ASSERT_GT(plain.pairCount(), 5000u);
+      EXPECT_EQ(grouped.pairCount(), plain.pairCount());
+      const auto a = sortedPartners(grouped, s.size()), b = sortedPartners(plain, s.size());
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        ASSERT_EQ(a[i], b[i]) << i;
+        EXPECT_EQ(std::adjacent_find(a[i].begin(), a[i].end()), a[i].end()) << i;
+      }
+      // Fewer bytes than a pair per entry: a dense liquid has several partners a group.
+      if (hi == 3.0f) {
+        EXPECT_LT(grouped.memoryBytes(), plain.memoryBytes());
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2);
+}
+
+// The closed-form kernel against the double-precision reference from the formula, to
+// float rounding (the table kernel is held to 2e-3, its sampling error): in both copies,
+// with its sums in a buffer (narrow layers) and straight to the store (narrowSpan 0:
+// what layers across the grid's wrap do), for two sigmas.
+TEST(ClosedForm, KernelMatchesTheReferenceToFloatRounding) {
+  const RestoreSimd restore;
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    for (const double sigma : {0.8, 0.05})
+      for (const std::uint32_t span : {65536u, 0u}) {
+        const forces::InteractionTable table = ljTable(sigma, 2.5 * sigma);
+        const auto side = static_cast<float>(4 * sigma);
+        // Density 0.6 per sigma^3, no pair closer than 0.8 sigma (a liquid, not a blow-up).
+        ParticleStore s = scenarios::randomCloud(1501, -side, side, 0, 1, 23);
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          const float q = static_cast<float>(i);
+          s.px[i] = static_cast<float>(sigma) * (std::fmod(q, 12.0f) + 0.1f * std::sin(q));
+          s.py[i] = static_cast<float>(sigma) * (std::fmod(std::floor(q / 12.0f), 12.0f) + 0.1f * std::cos(q));
+          s.pz[i] = static_cast<float>(sigma) * (std::floor(q / 144.0f) + 0.1f * std::sin(2 * q));
+        }
+        const auto skin = static_cast<float>(0.3 * sigma);
+        neighbors::CellGrid grid;
+        grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+        ListOptions options;
+        options.narrowSpan = span;
+        PairList list;
+        list.build(grid, table, s, skin, options);
+        ASSERT_TRUE(list.grouped());
+        zeroForces(s);
+        accumulatePairForces(list, table, s);
+        std::vector<double> rx, ry, rz;
+        referencePairForces(table, s, rx, ry, rz);
+        double worst = 0, scale = 0;
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          worst = std::max(worst, std::abs(s.f[i].x - rx[i]) + std::abs(s.f[i].y - ry[i]) + std::abs(s.f[i].z - rz[i]));
+          scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
+        }
+        ASSERT_GT(scale, 1.0);
+        EXPECT_LT(worst, 2e-5 * scale) << "sigma " << sigma << " span " << span;
+        ++checked;
+      }
+  }
+  EXPECT_GE(checked, 4);
+}
+
+// The closed-form kernel's sums are bitwise the same on 1, 2 and 3 threads, in both
+// copies (which agree with each other bit for bit too), and with the list built and
+// evaluated in one pass (what the solver does on a rebuild).
+TEST(ClosedForm, SumsAreBitwiseTheSameOnEveryThreadCountAndCopy) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable();
+  ParticleStore s = scenarios::randomCloud(4001, -5, 5, 0, 1, 29);
+  const float skin = 0.25f;
+  neighbors::CellGrid grid;
+  grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+  ASSERT_GT(grid.layers().size(), 4u);
+  std::vector<Force> first;
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    for (const std::size_t threads : {1u, 2u, 3u}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      PairList list;
+      list.build(grid, table, s, skin);
+      ParticleStore a = s;
+      zeroForces(a);
+      accumulatePairForces(list, table, a);
+      if (first.empty()) first = a.f;
+      EXPECT_EQ(a.f, first) << threads << " threads";
+      ParticleStore b = s;
+      zeroForces(b);
+      PairList fused;
+      fused.buildAndAccumulate(grid, table, b, skin);
+      EXPECT_EQ(b.f, first) << threads << " threads, fused";
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 3);
+}
+
+// Two atoms closer than where the formula clamps its force, and two on top of each
+// other: finite, opposite forces (no direction for the coincident pair: none at all).
+TEST(ClosedForm, CloseAndCoincidentAtomsStayFinite) {
+  const forces::InteractionTable table = ljTable(1.0, 2.5);
+  ParticleStore s;
+  s.add(0, 0, 0, 0, 0, 0, 0, 0);
+  s.add(0.01f, 0, 0, 0, 0, 0, 0, 0);
+  s.add(5, 5, 5, 0, 0, 0, 0, 0);
+  s.add(5, 5, 5, 0, 0, 0, 0, 0);
+  neighbors::CellGrid g;
+  g.rebuild(s, 2.8f);
+  PairList list;
+  list.build(g, table, s, 0.3f);
+  ASSERT_TRUE(list.grouped());
+  zeroForces(s);
+  accumulatePairForces(list, table, s);
+  for (const Force& f : s.f) EXPECT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.z));
+  std::vector<std::uint32_t> slot;
+  s.slotsById(slot);
+  EXPECT_LT(s.f[slot[0]].x, -1e9f);  // pushed apart hard
+  EXPECT_FLOAT_EQ(s.f[slot[0]].x, -s.f[slot[1]].x);
+  EXPECT_EQ(s.f[slot[2]].x, 0.0f);
+  EXPECT_EQ(s.f[slot[3]].x, 0.0f);
 }
 
 }  // namespace

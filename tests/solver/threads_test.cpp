@@ -101,6 +101,46 @@ TEST(ThreadCount, LayersAlongXOrYAreBitwiseTheSameOnOneTwoAndThreeThreads) {
   }
 }
 
+// A Lennard-Jones liquid (the true force alone: the closed-form kernel on grouped lists)
+// of 2,197 atoms in a box, moving, on `threads` threads.
+std::vector<std::vector<std::uint8_t>> liquidTrajectory(int substeps, std::size_t threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  Model model;
+  model.gravity = Vec3::Zero();
+  model.integrator = Integrator::VelocityVerlet;
+  model.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 0});
+  model.materials.push_back({1.0f, 0.5f});
+  model.table = forces::InteractionTable(1);
+  model.table.set(0, 0, {forces::LennardJonesForce{1, 1, 2.5}, 0, 0});
+  Container box;
+  box.lo = {-0.6, -0.6, -0.6};
+  box.hi = {14.4, 14.4, 14.4};
+  model.container = box;
+  State state;
+  for (int k = 0; k < 13 * 13 * 13; ++k) {
+    const float x = static_cast<float>(k % 13), y = static_cast<float>(k / 13 % 13), z = static_cast<float>(k / 169);
+    state.particles.add(1.1f * x, 1.1f * y, 1.1f * z, 0.5f * std::sin(1.3f * x + y), 0.5f * std::cos(0.7f * y + z),
+                        0.5f * std::sin(x - 2.1f * z), 0, 0);
+    state.particles.id.back() = static_cast<std::uint32_t>(k);
+  }
+  model.fluids[0].count = state.particles.size();
+  Simulation sim(model, std::move(state));
+  std::vector<std::vector<std::uint8_t>> out;
+  for (int k = 0; k < substeps; ++k) {
+    sim.step();
+    out.push_back(stateBytes(sim));
+  }
+  return out;
+}
+
+TEST(ThreadCount, ClosedFormLennardJonesLiquidIsBitwiseTheSameOnOneTwoAndThreeThreads) {
+  const auto one = liquidTrajectory(24, 1);
+  for (const std::size_t threads : {2u, 3u}) {
+    const auto other = liquidTrajectory(24, threads);
+    for (int k = 0; k < 24; ++k) ASSERT_TRUE(other[k] == one[k]) << threads << " threads, substep " << k + 1;
+  }
+}
+
 // FNV-1a over bytes.
 std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
   std::uint64_t h = 0xcbf29ce484222325ull;
