@@ -13,6 +13,9 @@
 // fcc at density 0.8442, cutoff 2.5, no velocity terms).
 // Second argument of BM_PairKernel and BM_ListBuild: 0 = the copy the CPU selects
 // (fluid::simdInUse, AVX2 where there is one), 1 = the baseline copy (SSE2).
+// Third argument of BM_PairKernel: 0 = the closed-form kernel on a grouped list where
+// the table has one (the LJ liquid: InteractionTable::closedFormLj), 1 = the table
+// kernel whatever the table (ListOptions::closedForm off).
 // Counters: pairs/s is listed pairs processed per second.
 #include <benchmark/benchmark.h>
 
@@ -86,9 +89,12 @@ struct SimdFor {
 };
 
 Case& caseOf(std::int64_t which) {
-  static Case pool = seedPool(200000);
-  static Case lj = ljLiquid(20);
-  return which == 0 ? pool : lj;
+  if (which == 0) {
+    static Case pool = seedPool(200000);
+    return pool;
+  }
+  static Case lj = ljLiquid(20);  // made only when asked for: the pool takes a while
+  return lj;
 }
 
 void BM_PairKernel(benchmark::State& st) {
@@ -109,6 +115,15 @@ void BM_PairKernel(benchmark::State& st) {
   st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),
                                               benchmark::Counter::kIsRate);
   st.counters["pairs/particle"] = static_cast<double>(list.pairCount()) / static_cast<double>(s.size());
+  std::size_t entries = 0;  // pairs, or groups of 8 slots in a grouped list
+  std::size_t wide = 0;  // layers with 32-bit entries, or whose sums go straight to the store
+  for (const fluid::PairList::Layer& l : list.layers()) {
+    entries += l.size();
+    wide += l.narrow ? 0 : 1;
+  }
+  st.counters["entries/particle"] = static_cast<double>(entries) / static_cast<double>(s.size());
+  st.counters["wide layers"] = static_cast<double>(wide);
+  st.counters["layers"] = static_cast<double>(list.layers().size());
   st.counters["list bytes/particle"] = static_cast<double>(list.memoryBytes()) / static_cast<double>(s.size());
 }
 BENCHMARK(BM_PairKernel)->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(1.0);

@@ -77,8 +77,9 @@ class PairList {
   /// further (very large layers, the wrap-around of the grid) keep 32-bit slots.
   ///
   /// Grouped layers (the closed-form kernel, ListOptions::closedForm) list instead, per
-  /// slot, the aligned groups of 8 slots [8 g, 8 g + 8) holding its partners, one 32-bit
-  /// entry each: g << 8 | the lanes that are partners (bit c: slot 8 g + c). The kernel
+  /// slot, the aligned groups of 8 slots [b + 8 g, b + 8 g + 8) holding its partners
+  /// (b: span.begin rounded down to a multiple of 8), one 32-bit entry each:
+  /// g << 8 | the lanes that are partners (bit c: slot b + 8 g + c). The kernel
   /// evaluates a group's 8 lanes at once from the store's arrays, with no gather, and
   /// masks the lanes that are not partners. `span` is then the slots the layer's pairs
   /// touch; in narrow layers the kernel sums their forces in a buffer of that size.
@@ -105,7 +106,7 @@ class PairList {
         }
         const std::uint32_t e = groups[q];
         for (std::uint32_t bits = e & 255u; bits != 0; bits &= bits - 1)
-          fn((e >> 8) * 8 + static_cast<std::uint32_t>(__builtin_ctz(bits)));
+          fn((span.begin & ~7u) + (e >> 8) * 8 + static_cast<std::uint32_t>(__builtin_ctz(bits)));
       }
     }
     /// Number of list entries (pairs; groups in grouped layers).

@@ -196,14 +196,15 @@ inline std::uint32_t laneRange(std::uint32_t g8, std::uint32_t b, std::uint32_t 
 
 // A grouped layer's list (PairList::Layer::grouped) for slot i: the groups of 8 slots
 // that hold its partners among [b, e) (one candidate range: the rest of i's cell, or a
-// forward range), each with the lanes that are partners, written from out[listed] on;
+// forward range), counted from the layer's first group `lo` (a slot, multiple of 8),
+// each with the lanes that are partners, written from out[listed] on;
 // returns the new length. out has room for one entry per group the range touches. The
 // groups are tested straight from the store's arrays, 8 slots at a time with the same
 // distance test as filter(), so a grouped list lists exactly the pairs a plain one
 // does. A group that two ranges share (one ends and the next begins inside it) is
 // listed twice with disjoint lanes: each pair is still evaluated once.
 inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
-                                std::uint32_t* __restrict out, std::uint32_t listed) {
+                                std::uint32_t lo, std::uint32_t* __restrict out, std::uint32_t listed) {
   const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
   const auto n = static_cast<std::uint32_t>(s.size());
   const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
@@ -221,7 +222,7 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
       near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
     }
     const std::uint32_t lanes = near & laneRange(g8, b, e);
-    out[listed] = g8 << 5 | lanes;  // (g8 / 8) << 8
+    out[listed] = (g8 - lo) << 5 | lanes;  // ((g8 - lo) / 8) << 8
     listed += lanes != 0 ? 1u : 0u;
   }
   return listed;
@@ -314,6 +315,7 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   // Grouped: no candidate buffer; each candidate range is tested group by group in the
   // store (listGroups). Rigid bodies never make a grouped list (one fluid), so no owners.
   auto fillGroups = [&](std::vector<std::uint32_t>& out) {
+    const std::uint32_t lo = layer.span.begin & ~7u;
     out.resize(out.capacity());
     std::uint32_t listed = 0;
     for (std::size_t c = cellBegin; c < cellEnd; ++c) {
@@ -328,8 +330,9 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
         layer.start[i - layer.slots.begin] = listed;
         if (out.size() < listed + most) grow(out, listed + most);
         const float cut2 = rowCut2[s.material[i]];
-        listed = listGroups(s, i, cut2, i + 1, own.end, out.data(), listed);
-        for (const neighbors::SlotRange& r : forward) listed = listGroups(s, i, cut2, r.begin, r.end, out.data(), listed);
+        listed = listGroups(s, i, cut2, i + 1, own.end, lo, out.data(), listed);
+        for (const neighbors::SlotRange& r : forward)
+          listed = listGroups(s, i, cut2, r.begin, r.end, lo, out.data(), listed);
       }
     }
     out.resize(listed);
@@ -638,16 +641,48 @@ inline Vf loadV(const float* p) {
   return v;
 }
 inline void storeV(float* p, Vf v) { std::memcpy(p, &v, sizeof v); }
-inline Vf selectV(Vi mask, Vf a, Vf b) {  // a where mask, else b
-  return reinterpret_cast<Vf>((reinterpret_cast<Vi>(a) & mask) | (reinterpret_cast<Vi>(b) & ~mask));
-}
-// A group's 8 lanes summed in one fixed order, whatever the parts.
-inline float sumLanes(const Vf* v) {
+// b < a ? a : b per lane (b where either is NaN): one instruction (maxps) where the
+// compiler would otherwise compare and blend.
+inline Vf atLeast(Vf a, Vf b) {
 #if SOFTSUB_KERNEL_AVX || defined(__AVX__)
-  return ((v[0][0] + v[0][4]) + (v[0][2] + v[0][6])) + ((v[0][1] + v[0][5]) + (v[0][3] + v[0][7]));
+  return _mm256_max_ps(a, b);
+#elif defined(__SSE2__)
+  return _mm_max_ps(a, b);
 #else
-  const Vf t = v[0] + v[1];
-  return (t[0] + t[2]) + (t[1] + t[3]);
+  const Vi less = b < a;
+  return reinterpret_cast<Vf>((reinterpret_cast<Vi>(a) & less) | (reinterpret_cast<Vi>(b) & ~less));
+#endif
+}
+
+// For each 8-bit lane mask of a group entry, the lanes as all-ones or zero (8 KB): one
+// load instead of a broadcast, an AND and two comparisons per group.
+struct LaneMasks {
+  alignas(32) std::int32_t lanes[256][8];
+  constexpr LaneMasks() : lanes() {
+    for (std::uint32_t m = 0; m < 256; ++m)
+      for (std::uint32_t c = 0; c < 8; ++c) lanes[m][c] = (m >> c) & 1u ? -1 : 0;
+  }
+};
+inline constexpr LaneMasks kLaneMasks{};
+// The 8 lanes of each of three sums (x, y, z), each added in one fixed order whatever
+// the parts: ((0 + 1) + (2 + 3)) + ((4 + 5) + (6 + 7)); horizontal additions in the
+// AVX2 copy (a third of the instructions of lane-by-lane sums).
+inline void sumLanes(const Vf* x, const Vf* y, const Vf* z, float out[3]) {
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+  const __m256 xy = _mm256_hadd_ps(x[0], y[0]);            // x01 x23 y01 y23 | x45 x67 y45 y67
+  const __m256 zz = _mm256_hadd_ps(z[0], z[0]);            // z01 z23 z01 z23 | z45 z67 z45 z67
+  const __m256 xyz = _mm256_hadd_ps(xy, zz);               // x0123 y0123 z0123 . | x4567 ...
+  const __m128 sum = _mm_add_ps(_mm256_castps256_ps128(xyz), _mm256_extractf128_ps(xyz, 1));
+  out[0] = sum[0];
+  out[1] = sum[1];
+  out[2] = sum[2];
+#else
+  const auto tree = [](const Vf* v) {
+    return ((v[0][0] + v[0][1]) + (v[0][2] + v[0][3])) + ((v[1][0] + v[1][1]) + (v[1][2] + v[1][3]));
+  };
+  out[0] = tree(x);
+  out[1] = tree(y);
+  out[2] = tree(z);
 #endif
 }
 
@@ -667,51 +702,40 @@ inline float sumLanes(const Vf* v) {
 // after its last pair; the same whatever the number of threads.
 template <bool kSums>
 void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
-                       float* __restrict sums, std::size_t stride) {
-  const float* __restrict px = s.px.data();
-  const float* __restrict py = s.py.data();
-  const float* __restrict pz = s.pz.data();
+                       float* __restrict sums) {
+  const auto n = static_cast<std::uint32_t>(s.size());
+  const std::uint32_t lo = layer.span.begin & ~7u;
+  // Positions counted from the layer's first group, as its entries are.
+  const float* __restrict px = s.px.data() + lo;
+  const float* __restrict py = s.py.data() + lo;
+  const float* __restrict pz = s.pz.data() + lo;
   Force* __restrict f = s.f.data();
   const std::uint32_t* __restrict start = layer.start.data();
   const std::uint32_t* __restrict groups = layer.groups.data();
-  const auto n = static_cast<std::uint32_t>(s.size());
-  const std::uint32_t lo = layer.span.begin & ~7u;
-  float* __restrict sx = sums;
-  float* __restrict sy = sums + stride;
-  float* __restrict sz = sums + 2 * stride;
+  const std::uint32_t whole = (n - lo) / 8;  // groups counted from lo with all 8 slots in the store
+  const std::uint32_t blocks = (layer.span.end - lo + 7) / 8;
   if constexpr (kSums)
-    for (std::size_t t = 0; t < 3 * stride; ++t) sums[t] = 0.0f;
+    for (std::size_t t = 0; t < 24 * std::size_t{blocks}; ++t) sums[t] = 0.0f;
   const Vf a = Vf{} + lj.a, b = Vf{} + lj.b, sigma2 = Vf{} + lj.sigma2;
   const Vf cutoff2 = Vf{} + lj.cutoff2, minR2 = Vf{} + lj.minR2;
-  Vi lanes[kParts];
-  for (std::uint32_t h = 0; h < kParts; ++h)
-    for (std::uint32_t c = 0; c < kLanes; ++c) lanes[h][c] = 1 << (h * kLanes + c);
   float tx[8], ty[8], tz[8];  // the store's last group, padded
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
   for (std::uint32_t k = 0; k < rows; ++k) {
     const std::uint32_t i = layer.slots.begin + k;
-    const Vf xi = Vf{} + px[i], yi = Vf{} + py[i], zi = Vf{} + pz[i];
+    const Vf xi = Vf{} + s.px[i], yi = Vf{} + s.py[i], zi = Vf{} + s.pz[i];
     Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
-    for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
-      const std::uint32_t e = groups[q], base = (e >> 8) * 8;
-      const float *xs = px + base, *ys = py + base, *zs = pz + base;
-      if (base + 8 > n) {  // missing lanes are never partners
-        for (std::uint32_t c = 0; c < 8; ++c) {
-          tx[c] = base + c < n ? px[base + c] : 0.0f;
-          ty[c] = base + c < n ? py[base + c] : 0.0f;
-          tz[c] = base + c < n ? pz[base + c] : 0.0f;
-        }
-        xs = tx;
-        ys = ty;
-        zs = tz;
-      }
-      const Vi bits = Vi{} + static_cast<std::int32_t>(e & 255u);
+    // One group: relative group g, whose positions are at xs, ys, zs.
+    const auto group = [&](const float* xs, const float* ys, const float* zs, std::uint32_t e, std::uint32_t g) {
+      const std::int32_t* partnerLanes = kLaneMasks.lanes[e & 255u];
+      float* block = sums + 24 * std::size_t{g};  // kSums: x, y, z sums of the group's 8 slots
       for (std::uint32_t h = 0; h < kParts; ++h) {
         const std::uint32_t o = h * kLanes;
         const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
         const Vf r2 = dx * dx + dy * dy + dz * dz;
-        const Vi in = ((bits & lanes[h]) != 0) & (r2 < cutoff2);
-        const Vf u = sigma2 / selectV(r2 < minR2, minR2, r2);
+        Vi partner;
+        std::memcpy(&partner, partnerLanes + o, sizeof partner);
+        const Vi in = partner & (r2 < cutoff2);
+        const Vf u = sigma2 / atLeast(minR2, r2);
         const Vf u3 = u * u * u;
         const Vf fr = reinterpret_cast<Vf>(reinterpret_cast<Vi>((a * u3 - b) * u3 * u) & in);  // F(r) / r
         const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;  // the force on j
@@ -719,35 +743,54 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         ay[h] += gy;
         az[h] += gz;
         if constexpr (kSums) {
-          const std::uint32_t p = base + o - lo;
-          storeV(sx + p, loadV(sx + p) + gx);
-          storeV(sy + p, loadV(sy + p) + gy);
-          storeV(sz + p, loadV(sz + p) + gz);
+          storeV(block + o, loadV(block + o) + gx);
+          storeV(block + 8 + o, loadV(block + 8 + o) + gy);
+          storeV(block + 16 + o, loadV(block + 16 + o) + gz);
         } else {
+          const std::uint32_t at = lo + 8 * g + o;
           for (std::uint32_t c = 0; c < kLanes; ++c)
             if ((e >> (o + c)) & 1u) {
-              f[base + o + c].x += gx[c];
-              f[base + o + c].y += gy[c];
-              f[base + o + c].z += gz[c];
+              f[at + c].x += gx[c];
+              f[at + c].y += gy[c];
+              f[at + c].z += gz[c];
             }
         }
       }
+    };
+    for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
+      const std::uint32_t e = groups[q], g = e >> 8;
+      if (g < whole) [[likely]] {  // straight from the store
+        group(px + 8 * g, py + 8 * g, pz + 8 * g, e, g);
+        continue;
+      }
+      // The store's last, partial group: its missing lanes are never partners.
+      for (std::uint32_t c = 0; c < 8; ++c) {
+        const std::uint32_t t = 8 * g + c;
+        tx[c] = lo + t < n ? px[t] : 0.0f;
+        ty[c] = lo + t < n ? py[t] : 0.0f;
+        tz[c] = lo + t < n ? pz[t] : 0.0f;
+      }
+      group(tx, ty, tz, e, g);
     }
+    float own[3];
+    sumLanes(ax, ay, az, own);
     if constexpr (kSums) {
-      sx[i - lo] -= sumLanes(ax);
-      sy[i - lo] -= sumLanes(ay);
-      sz[i - lo] -= sumLanes(az);
+      float* block = sums + 24 * std::size_t{(i - lo) / 8} + (i - lo) % 8;
+      block[0] -= own[0];
+      block[8] -= own[1];
+      block[16] -= own[2];
     } else {
-      f[i].x -= sumLanes(ax);
-      f[i].y -= sumLanes(ay);
-      f[i].z -= sumLanes(az);
+      f[i].x -= own[0];
+      f[i].y -= own[1];
+      f[i].z -= own[2];
     }
   }
   if constexpr (kSums)
     for (std::uint32_t t = layer.span.begin; t < layer.span.end; ++t) {
-      f[t].x += sx[t - lo];
-      f[t].y += sy[t - lo];
-      f[t].z += sz[t - lo];
+      const float* block = sums + 24 * std::size_t{(t - lo) / 8} + (t - lo) % 8;
+      f[t].x += block[0];
+      f[t].y += block[8];
+      f[t].z += block[16];
     }
 }
 
@@ -757,12 +800,12 @@ inline void layerForcesOf(const PairList::Layer& layer, const forces::Interactio
                           std::vector<float>& sums) {
   if (layer.grouped) {
     const forces::ClosedFormLj& lj = *table.closedFormLj();
-    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr, 0);
-    const std::size_t stride = ((layer.span.end + 7u) & ~7u) - (layer.span.begin & ~7u);
-    if (sums.size() < 3 * stride + 8) sums.resize(3 * stride + 8);
+    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr);
+    const std::size_t blocks = (layer.span.end - (layer.span.begin & ~7u) + 7) / 8;
+    if (sums.size() < 24 * blocks + 8) sums.resize(24 * blocks + 8);
     // 32-byte aligned, so that a group's 8 sums are one aligned vector.
     float* at = sums.data() + ((0u - reinterpret_cast<std::uintptr_t>(sums.data()) / sizeof(float)) & 7u);
-    return groupedPairForces<true>(layer, lj, s, at, stride);
+    return groupedPairForces<true>(layer, lj, s, at);
   }
   if (layer.narrow)
     layerForces(layer, layer.near.data(), layer.slots.begin, table, s);
