@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <stdexcept>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
@@ -127,7 +129,7 @@ std::size_t PairList::pairCount() const {
       continue;
     }
     for (std::size_t q = 0; q < layer.size(); ++q)
-      n += static_cast<std::size_t>(__builtin_popcount(layer.groups[q] & 255u));
+      n += static_cast<std::size_t>(std::popcount(layer.groups[q] & 255u));
   }
   return n;
 }
@@ -164,8 +166,10 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   layerCount_ = gridLayers.size();
   if (layers_.size() < layerCount_) layers_.resize(layerCount_);
   phases_ = grid.layersByPhase();
-  // Groups of 8 slots for the closed-form kernel: a group's index has 24 bits.
-  grouped_ = options.closedForm && table.closedFormLj().has_value() && s.size() < (std::size_t{1} << 27);
+  // Groups of 8 slots for the closed-form kernel: a group's index has 24 bits, and the
+  // grouped build does not exclude a rigid owner's own pairs.
+  grouped_ = options.closedForm && table.closedFormLj().has_value() && s.size() < (std::size_t{1} << 27) &&
+             options.exclusiveOwnersFrom == UINT32_MAX;
   // Cells, and so layers, come in slot order: a layer is a run of cells.
   firstCell_.resize(layerCount_ + 1);  // keeps its memory: no allocation once warmed up
   {

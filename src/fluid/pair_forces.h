@@ -1,5 +1,6 @@
 #pragma once
 /// The pair kernel: one formula for every pair of particles, whatever their materials.
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -91,7 +92,7 @@ class PairList {
     std::vector<std::uint16_t> near;    ///< narrow, not grouped: partner slot - slots.begin
     std::vector<std::uint32_t> far;     ///< not narrow, not grouped: partner slot
     std::vector<std::uint32_t> groups;  ///< grouped: g << 8 | partner lanes
-    neighbors::SlotRange span;          ///< grouped: lowest and highest partner, i included
+    neighbors::SlotRange span;          ///< the slots of the layer and of its cells' candidate ranges
     /// The slot of list entry q (layers that are not grouped).
     [[nodiscard]] std::uint32_t partner(std::uint32_t q) const {
       return narrow ? slots.begin + near[q] : far[q];
@@ -106,7 +107,7 @@ class PairList {
         }
         const std::uint32_t e = groups[q];
         for (std::uint32_t bits = e & 255u; bits != 0; bits &= bits - 1)
-          fn((span.begin & ~7u) + (e >> 8) * 8 + static_cast<std::uint32_t>(__builtin_ctz(bits)));
+          fn((span.begin & ~7u) + (e >> 8) * 8 + static_cast<std::uint32_t>(std::countr_zero(bits)));
       }
     }
     /// Number of list entries (pairs; groups in grouped layers).

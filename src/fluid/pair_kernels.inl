@@ -799,6 +799,7 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
 inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s,
                           std::vector<float>& sums) {
   if (layer.grouped) {
+    if (!table.closedFormLj()) throw std::logic_error("a grouped pair list used with a table that has no closed form");
     const forces::ClosedFormLj& lj = *table.closedFormLj();
     if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr);
     const std::size_t blocks = (layer.span.end - (layer.span.begin & ~7u) + 7) / 8;

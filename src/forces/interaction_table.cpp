@@ -50,6 +50,7 @@ std::optional<ClosedFormLj> closedFormOf(const Interaction& in) {
   // The distance where the formula reaches its clamp: F falls with r below sigma, so
   // bisect on (0, sigma] for the largest r whose F is still clamped.
   const double limit = evaluate(in.function, 0.0);
+  if (evaluate(in.function, lj->sigma) >= limit) return std::nullopt;  // units where sigma is clamped: the table
   double lo = 0, hi = lj->sigma;
   for (int k = 0; k < 200 && hi - lo > 1e-12 * lj->sigma; ++k) {
     const double mid = 0.5 * (lo + hi);

@@ -45,8 +45,11 @@ struct PairEntry {
 /// The true Lennard-Jones force (LennardJonesForce) in closed form, for the grouped pair
 /// kernel (fluid::PairList, docs/architecture.md "Two kernels"): with
 /// u = sigma2 / max(r^2, minR2), F(r) / r = (a u^3 - b) u^3 u, and zero from cutoff2 on.
-/// minR2 is where |F| reaches the formula's clamp (forces::evaluate): below it the force
-/// is held at that distance's, as the clamp holds it.
+/// minR2 is where |F| reaches the formula's clamp (forces::evaluate, 1e12 force units;
+/// 0.16 sigma for epsilon 1): closer than that, r^2 is taken as minR2, so F / r is held
+/// and the force falls in proportion to r, where the formula's clamp holds F itself. A
+/// liquid never comes that close (U is about 1e11 epsilon there): only a run that has
+/// blown up does, and the solver's blow-up check stops it.
 struct ClosedFormLj {
   float a = 0;        ///< 48 epsilon / sigma^2
   float b = 0;        ///< 24 epsilon / sigma^2

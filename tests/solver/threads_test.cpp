@@ -60,6 +60,17 @@ INSTANTIATE_TEST_SUITE_P(Examples, ThreadCount,
                            return n;
                          });
 
+// The states after each of `substeps` substeps of a model and its first state.
+std::vector<std::vector<std::uint8_t>> stepped(const Model& model, State state, int substeps) {
+  Simulation sim(model, std::move(state));
+  std::vector<std::vector<std::uint8_t>> out;
+  for (int k = 0; k < substeps; ++k) {
+    sim.step();
+    out.push_back(stateBytes(sim));
+  }
+  return out;
+}
+
 // Scenes whose grid layers run along x (a dam flat in z) and along y (a tall column):
 // the phases and the 16-bit lists follow the chosen axis, and the sums stay the same on
 // any thread count.
@@ -81,13 +92,7 @@ std::vector<std::vector<std::uint8_t>> shapedTrajectory(int shape, int substeps,
       state.particles.add(std::fmod(f, 5.0f), 0.5f + std::floor(f / 25.0f), std::fmod(std::floor(f / 5.0f), 5.0f), 0,
                           0, 0, 0, 0);
   }
-  Simulation sim(model, std::move(state));
-  std::vector<std::vector<std::uint8_t>> out;
-  for (int k = 0; k < substeps; ++k) {
-    sim.step();
-    out.push_back(stateBytes(sim));
-  }
-  return out;
+  return stepped(model, std::move(state), substeps);
 }
 
 TEST(ThreadCount, LayersAlongXOrYAreBitwiseTheSameOnOneTwoAndThreeThreads) {
@@ -124,13 +129,8 @@ std::vector<std::vector<std::uint8_t>> liquidTrajectory(int substeps, std::size_
     state.particles.id.back() = static_cast<std::uint32_t>(k);
   }
   model.fluids[0].count = state.particles.size();
-  Simulation sim(model, std::move(state));
-  std::vector<std::vector<std::uint8_t>> out;
-  for (int k = 0; k < substeps; ++k) {
-    sim.step();
-    out.push_back(stateBytes(sim));
-  }
-  return out;
+  EXPECT_TRUE(model.table.closedFormLj().has_value());  // the closed-form kernel, not the table's
+  return stepped(model, std::move(state), substeps);
 }
 
 TEST(ThreadCount, ClosedFormLennardJonesLiquidIsBitwiseTheSameOnOneTwoAndThreeThreads) {
