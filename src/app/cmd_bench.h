@@ -16,6 +16,7 @@ struct BenchOptions {
   std::vector<long> particles{32000, 256000};  ///< rounded to 4 n^3 (an fcc lattice)
   std::vector<double> cutoffs{2.5, 2.0};       ///< in sigma
   int steps = 100;                             ///< velocity-Verlet steps of 0.005 tau
+  int repeat = 3;                              ///< runs of each code per row, alternating; the best of each is printed
   std::string lammps;                          ///< LAMMPS binary; empty: lmp on PATH
   std::string keep;                            ///< folder to keep the inputs in; empty: none kept
   int threads = 0;                             ///< the root's --threads: the second row's count; 0: all cores

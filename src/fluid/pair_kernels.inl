@@ -736,8 +736,9 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         std::memcpy(&partner, partnerLanes + o, sizeof partner);
         const Vi in = partner & (r2 < cutoff2);
         const Vf u = sigma2 / atLeast(minR2, r2);
-        const Vf u3 = u * u * u;
-        const Vf fr = reinterpret_cast<Vf>(reinterpret_cast<Vi>((a * u3 - b) * u3 * u) & in);  // F(r) / r
+        const Vf u2 = u * u;
+        const Vf u3 = u2 * u, u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
+        const Vf fr = (a * u3 - b) * u4;  // F(r) / r
         const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;  // the force on j
         ax[h] += gx;
         ay[h] += gy;

@@ -44,7 +44,7 @@ struct PairEntry {
 
 /// The true Lennard-Jones force (LennardJonesForce) in closed form, for the grouped pair
 /// kernel (fluid::PairList, docs/architecture.md "Two kernels"): with
-/// u = sigma2 / max(r^2, minR2), F(r) / r = (a u^3 - b) u^3 u, and zero from cutoff2 on.
+/// u = sigma2 / max(r^2, minR2), F(r) / r = (a u^3 - b) u^4, and zero from cutoff2 on.
 /// minR2 is where |F| reaches the formula's clamp (forces::evaluate, 1e12 force units;
 /// 0.16 sigma for epsilon 1): closer than that, r^2 is taken as minR2, so F / r is held
 /// and the force falls in proportion to r, where the formula's clamp holds F itself. A
