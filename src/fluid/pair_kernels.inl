@@ -194,6 +194,19 @@ inline std::uint32_t laneRange(std::uint32_t g8, std::uint32_t b, std::uint32_t 
   return (0xFFu << from) & (0xFFu >> (8 - to));
 }
 
+// The positions of the store's group of 8 slots from `first` (a multiple of 8), the
+// slots past the store's end as 0: its last, partial group, for the list build and the
+// kernel, which read whole groups (the padding lanes are never partners).
+inline void paddedGroup(const ParticleStore& s, std::uint32_t first, float (&x)[8], float (&y)[8], float (&z)[8]) {
+  const auto n = static_cast<std::uint32_t>(s.size());
+  for (std::uint32_t c = 0; c < 8; ++c) {
+    const bool in = first + c < n;
+    x[c] = in ? s.px[first + c] : 0.0f;
+    y[c] = in ? s.py[first + c] : 0.0f;
+    z[c] = in ? s.pz[first + c] : 0.0f;
+  }
+}
+
 // A grouped layer's list (PairList::Layer::grouped) for slot i: the groups of 8 slots
 // that hold its partners among [b, e) (one candidate range: the rest of i's cell, or a
 // forward range), counted from the layer's first group `lo` (a slot, multiple of 8),
@@ -213,12 +226,8 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
     if (g8 + 8 <= n) {
       near = nearMask(store, g8, xi, yi, zi, cut2);
     } else {  // the store's last, partial group
-      float x[8] = {}, y[8] = {}, z[8] = {};
-      for (std::uint32_t c = 0; g8 + c < n; ++c) {
-        x[c] = s.px[g8 + c];
-        y[c] = s.py[g8 + c];
-        z[c] = s.pz[g8 + c];
-      }
+      float x[8], y[8], z[8];
+      paddedGroup(s, g8, x, y, z);
       near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
     }
     const std::uint32_t lanes = near & laneRange(g8, b, e);
@@ -764,13 +773,7 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         group(px + 8 * g, py + 8 * g, pz + 8 * g, e, g);
         continue;
       }
-      // The store's last, partial group: its missing lanes are never partners.
-      for (std::uint32_t c = 0; c < 8; ++c) {
-        const std::uint32_t t = 8 * g + c;
-        tx[c] = lo + t < n ? px[t] : 0.0f;
-        ty[c] = lo + t < n ? py[t] : 0.0f;
-        tz[c] = lo + t < n ? pz[t] : 0.0f;
-      }
+      paddedGroup(s, lo + 8 * g, tx, ty, tz);  // the store's last, partial group
       group(tx, ty, tz, e, g);
     }
     float own[3];

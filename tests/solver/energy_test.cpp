@@ -8,21 +8,12 @@
 #include "forces/function.h"
 #include "solver/energy.h"
 #include "solver/simulation.h"
+#include "support/scenarios.h"
 
 namespace softsub::solver {
 namespace {
 
-// One fluid of unit-mass particles with the true LJ force (epsilon 1, sigma 1, cutoff rc).
-Model ljModel(double rc) {
-  Model m;
-  m.gravity = Vec3::Zero();
-  m.integrator = Integrator::VelocityVerlet;
-  m.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 0});
-  m.materials.push_back({1.0f, 0.5f});
-  m.table = forces::InteractionTable(1);
-  m.table.set(0, 0, {forces::LennardJonesForce{1, 1, rc}, 0, 0});
-  return m;
-}
+using scenarios::ljModel;
 
 // The unshifted 12-6 potential at the cutoff (forces::potential reports U unshifted, as
 // LAMMPS's lj/cut does by default).

@@ -110,13 +110,7 @@ TEST(ThreadCount, LayersAlongXOrYAreBitwiseTheSameOnOneTwoAndThreeThreads) {
 // of 2,197 atoms in a box, moving, on `threads` threads.
 std::vector<std::vector<std::uint8_t>> liquidTrajectory(int substeps, std::size_t threads) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  Model model;
-  model.gravity = Vec3::Zero();
-  model.integrator = Integrator::VelocityVerlet;
-  model.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 0});
-  model.materials.push_back({1.0f, 0.5f});
-  model.table = forces::InteractionTable(1);
-  model.table.set(0, 0, {forces::LennardJonesForce{1, 1, 2.5}, 0, 0});
+  Model model = scenarios::ljModel(2.5);
   Container box;
   box.lo = {-0.6, -0.6, -0.6};
   box.hi = {14.4, 14.4, 14.4};

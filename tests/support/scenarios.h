@@ -6,6 +6,7 @@
 
 #include "support/clouds.h"
 #include "fluid/fluid_params.h"
+#include "forces/function.h"
 #include "solver/model.h"
 
 namespace softsub::scenarios {
@@ -20,6 +21,20 @@ inline solver::Model oneFluidModel(std::size_t n) {
   model.table = forces::InteractionTable(1);
   model.table.set(0, 0, {fluid::ownFunction(p), p.viscosity, 0});
   return model;
+}
+
+/// A Lennard-Jones liquid's model: one fluid "argon" of unit-mass atoms with the true
+/// force alone (LennardJonesForce, epsilon = sigma = 1, cutoff rc; the closed-form
+/// kernel's case), no gravity, velocity Verlet; no container.
+inline solver::Model ljModel(double rc) {
+  solver::Model m;
+  m.gravity = Vec3::Zero();
+  m.integrator = solver::Integrator::VelocityVerlet;
+  m.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 0});
+  m.materials.push_back({1.0f, 0.5f});
+  m.table = forces::InteractionTable(1);
+  m.table.set(0, 0, {forces::LennardJonesForce{1, 1, rc}, 0, 0});
+  return m;
 }
 
 /// The seed's benchmark situation: one fluid of `n` particles as a cubic lattice block
