@@ -82,7 +82,7 @@ TEST(BenchCli, LammpsComparisonRunsOurSideAndLammpsWhenInstalled) {
   TempDir tmp;
   // Without LAMMPS: a note, and softsub's side of the table.
   const RunResult ours = runSoftsub(
-      "bench lammps --particles 500 --cutoff 2.5 --steps 5 --lammps /nonexistent/lmp", tmp.path());
+      "bench lammps --particles 500 --cutoff 2.5 --steps 5 --repeat 1 --lammps /nonexistent/lmp", tmp.path());
   ASSERT_EQ(ours.code, 0) << ours.err;
   EXPECT_NE(ours.err.find("LAMMPS not found"), std::string::npos) << ours.err;
   const auto rows = statsRows(ours.out);  // rows with "-" stop at the first dash
@@ -92,7 +92,7 @@ TEST(BenchCli, LammpsComparisonRunsOurSideAndLammpsWhenInstalled) {
   EXPECT_GT(rows[0].at(3), 0.0) << "atom-steps per second";
   if (findProgram("lmp").empty()) GTEST_SKIP() << "LAMMPS (lmp) is not installed: its side is not checked";
   // With LAMMPS: both codes from the same start agree on the energy after the run.
-  const RunResult both = runSoftsub("bench lammps --particles 500 --cutoff 2.5 --steps 20 --keep " +
+  const RunResult both = runSoftsub("bench lammps --particles 500 --cutoff 2.5 --steps 20 --repeat 1 --keep " +
                                         quote(tmp / "kept"),
                                     tmp.path());
   ASSERT_EQ(both.code, 0) << both.err;
@@ -108,7 +108,7 @@ TEST(BenchCli, LammpsRowsFollowTheThreadsOption) {
   TempDir tmp;
   // The rows are 1 thread and --threads: with --threads 1 one row only (a second row
   // would claim more threads than the process may use), with --threads 3 a row for 3.
-  const std::string bench = "bench lammps --particles 32 --cutoff 2.5 --steps 2 --lammps /nonexistent/lmp";
+  const std::string bench = "bench lammps --particles 32 --cutoff 2.5 --steps 2 --repeat 1 --lammps /nonexistent/lmp";
   const RunResult single = runSoftsub("--threads 1 " + bench, tmp.path());
   ASSERT_EQ(single.code, 0) << single.err;
   const auto one = statsRows(single.out);
@@ -124,22 +124,28 @@ TEST(BenchCli, LammpsRowsFollowTheThreadsOption) {
 
 TEST(BenchCli, LammpsRowsPrintTheBestOfTheRepeatedRunsOfEachCode) {
   TempDir tmp;
-  // A stand-in for lmp: its first run reports a loop of 2 s, its later runs 0.5 s, and
-  // each run counts itself in a file, so the test sees how often it ran and which time
-  // the row printed (the best: 0.5 s).
+  // A stand-in for lmp: each run counts itself in a file and reports the loop time of
+  // its line in `times` (a run past the last line fails), so the test sees how often it
+  // ran and which time the row printed.
   const fs::path fake = tmp / "fake-lmp";
   {
     std::ofstream out(fake);
     out << "#!/bin/sh\n"
            "n=$(cat runs 2>/dev/null || echo 0); n=$((n+1)); echo $n > runs\n"
-           "if [ $n -eq 1 ]; then t=2.0; else t=0.5; fi\n"
+           "t=$(sed -n \"${n}p\" times); [ -n \"$t\" ] || exit 3\n"
            "echo \"Loop time of $t on 1 procs for 10 steps with 32 atoms\"\n"
            "echo \"10 1.5 -3.0 -1.5\"\n";
   }
   fs::permissions(fake, fs::perms::owner_all);
-  const std::string bench = "--threads 1 bench lammps --particles 32 --cutoff 2.5 --steps 10 --lammps " +
-                            quote(fake) + " --keep " + quote(tmp / "kept");
-  const RunResult r = runSoftsub(bench + " --repeat 3", tmp.path());
+  const auto bench = [&](const std::string& times, const std::string& kept, const std::string& more) {
+    fs::create_directories(tmp / kept);
+    std::ofstream(tmp / kept / "times") << times;
+    return runSoftsub("--threads 1 bench lammps --particles 32 --cutoff 2.5 --steps 10 --lammps " + quote(fake) +
+                          " --keep " + quote(tmp / kept) + " " + more,
+                      tmp.path());
+  };
+  // The fastest run in the middle: neither the first nor the last run is the best.
+  const RunResult r = bench("2.0\n0.5\n1.0\n", "three", "--repeat 3");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("best of 3 runs each"), std::string::npos) << r.out;
   const auto rows = statsRows(r.out);
@@ -147,9 +153,21 @@ TEST(BenchCli, LammpsRowsPrintTheBestOfTheRepeatedRunsOfEachCode) {
   ASSERT_EQ(rows[0].size(), 10u) << r.out;
   EXPECT_EQ(rows[0][4], 32.0 * 10 / 0.5) << "LAMMPS's best run";
   EXPECT_EQ(rows[0][7], -1.5) << "LAMMPS's energy";
-  EXPECT_EQ(readFile(tmp / "kept" / "runs"), "3\n") << "LAMMPS ran once per repeat";
+  EXPECT_EQ(readFile(tmp / "three" / "runs"), "3\n") << "LAMMPS ran once per repeat";
+  for (int run = 1; run <= 3; ++run)
+    EXPECT_TRUE(fs::exists(tmp / "three" / ("lj-32-rc2.5.1ranks.run" + std::to_string(run) + ".log"))) << run;
+  // A run that fails ends the row: the best run before it, and a note that says which.
+  const RunResult failed = bench("1.0\n", "fails", "--repeat 3");
+  ASSERT_EQ(failed.code, 0) << failed.err;
+  EXPECT_NE(failed.err.find("LAMMPS's run 2 of 3; the row shows its best before it"), std::string::npos)
+      << failed.err;
+  const auto kept = statsRows(failed.out);
+  ASSERT_EQ(kept.size(), 1u) << failed.out;
+  ASSERT_EQ(kept[0].size(), 10u) << failed.out;
+  EXPECT_EQ(kept[0][4], 32.0 * 10 / 1.0);
+  EXPECT_EQ(readFile(tmp / "fails" / "runs"), "2\n") << "no run after the failed one";
   for (const std::string bad : {"--repeat 0", "--repeat 101"}) {
-    const RunResult refused = runSoftsub(bench + " " + bad, tmp.path());
+    const RunResult refused = bench("1.0\n", "refused", bad);
     EXPECT_EQ(refused.code, 2) << bad;
     EXPECT_NE(refused.err.find("--repeat"), std::string::npos) << refused.err;
   }
