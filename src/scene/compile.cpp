@@ -41,9 +41,10 @@ forces::Interaction toInteraction(const InteractionDesc& d) {
 namespace {
 
 // See Compiled::warnings. The fluids' particles, one fluid at a time (they come first,
-// in scene order); the objects' particles are placed from their bodies by the
-// simulation, not here.
-std::vector<std::string> initialStateWarnings(const solver::Model& m, const ParticleStore& s) {
+// in scene order), then the objects', from their bodies' initial poses (the simulation
+// places them; the store does not hold them yet).
+std::vector<std::string> initialStateWarnings(const solver::Model& m, const ParticleStore& s,
+                                              const solver::State& state) {
   std::vector<std::string> out;
   std::vector<std::pair<std::size_t, std::string>> groups;  // first slot past each fluid
   std::size_t n = 0;
@@ -57,17 +58,37 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
       return s.px[i] < c.lo[0] || s.px[i] > c.hi[0] || s.py[i] < c.lo[1] || (c.closed && s.py[i] > c.hi[1]) ||
              s.pz[i] < c.lo[2] || s.pz[i] > c.hi[2];
     };
+    const std::string box = fmt::format("x [{:g}, {:g}], y [{:g}, {}], z [{:g}, {:g}]", c.lo[0], c.hi[0], c.lo[1],
+                                        c.closed ? fmt::format("{:g}", c.hi[1]) : "open top", c.lo[2], c.hi[2]);
     std::size_t from = 0;
     for (const auto& [to, what] : groups) {
       std::size_t count = 0;
       for (std::size_t i = from; i < to; ++i) count += outside(i) ? 1 : 0;
       if (count > 0)
-        out.push_back(fmt::format(
-            "{}: {} of {} particles start outside the container (x [{:g}, {:g}], y [{:g}, {}], z [{:g}, {:g}]); "
-            "its walls put them back inside on the first substep, with a jolt",
-            what, count, to - from, c.lo[0], c.hi[0], c.lo[1], c.closed ? fmt::format("{:g}", c.hi[1]) : "open top",
-            c.lo[2], c.hi[2]));
+        out.push_back(fmt::format("{}: {} of {} particles start outside the container ({}); its walls put them "
+                                  "back inside on the first substep, with a jolt",
+                                  what, count, to - from, box));
       from = to;
+    }
+    // The objects: the same test on each particle's initial world position.
+    const rigid::BodySet& set = m.bodies;
+    for (std::size_t b = 0; b < set.bodies.size() && b < state.bodies.size(); ++b) {
+      const rigid::BodyInfo& info = set.bodies[b];
+      const rigid::BodyState& pose = state.bodies[b];
+      const Mat3 r = pose.orientation.toRotationMatrix();
+      std::size_t count = 0;
+      for (std::uint32_t k = info.firstId - set.firstId; k < info.firstId - set.firstId + info.count; ++k) {
+        const Vec3 p = pose.position + r * Vec3(set.ox[k], set.oy[k], set.oz[k]);
+        count += p.x() < c.lo[0] || p.x() > c.hi[0] || p.y() < c.lo[1] || (c.closed && p.y() > c.hi[1]) ||
+                         p.z() < c.lo[2] || p.z() > c.hi[2]
+                     ? 1
+                     : 0;
+      }
+      if (count > 0)
+        out.push_back(fmt::format(
+            "Object '{}': {} of {} particles start outside the container ({}); {}", info.name, count, info.count, box,
+            info.dynamic ? "the walls push the body back inside over the first substeps, with a jolt"
+                         : "a static body never moves, and the fluids inside cannot reach the part outside"));
     }
   }
   // Exact duplicates: sorted positions, equal neighbours.
@@ -159,7 +180,7 @@ Compiled compile(const SceneDesc& desc) {
     nextId += info.count;
   }
   addBodies(desc, m, out.state, out.objectMeshes);
-  out.warnings = initialStateWarnings(m, store);
+  out.warnings = initialStateWarnings(m, store, out.state);
   return out;
 }
 

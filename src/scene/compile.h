@@ -16,11 +16,11 @@ struct Compiled {
   /// Each object's geometry in its own coordinates before UniformScale (scene order):
   /// what the `.sim` transforms place, written once beside the frames.
   std::vector<geometry::TriangleMesh> objectMeshes;
-  /// What the fluids' initial particles have that a user most likely did not mean, one
-  /// line each (`<element>: <text>`): particles outside the container (the walls put
-  /// them back inside on the first substep, with a jolt), and particles at exactly the
-  /// same place as another (a pair at distance 0 has no direction: they never push
-  /// apart).
+  /// What the initial particles have that a user most likely did not mean, one line
+  /// each (`<element>: <text>`): a fluid's or an object's particles outside the
+  /// container (the walls put a fluid's and a dynamic object's back inside, with a jolt;
+  /// a static object stays where it is), and fluid particles at exactly the same place
+  /// as another (a pair at distance 0 has no direction: they never push apart).
   std::vector<std::string> warnings;
 };
 

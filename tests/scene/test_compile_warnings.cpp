@@ -1,8 +1,12 @@
-// The warnings compile() gives about a scene's initial fluid particles: outside the
-// container, or exactly where another particle is. Only a scene that has them gets them.
+// The warnings compile() gives about a scene's initial particles: a fluid's or an
+// object's outside the container, or a fluid particle exactly where another one is.
+// Only a scene that has them gets them.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/compile.h"
 #include "scene/reader.h"
@@ -43,6 +47,46 @@ TEST(CompileWarnings, CountsTheParticlesOfEachFluidOutsideTheContainer) {
   const std::vector<std::string> lid = warningsOf(closed + "<Fluid><Name>a</Name>" + fill("0 8 0", "1 14 1") + "</Fluid>");
   ASSERT_EQ(lid.size(), 1u);  // y = 8.5 .. 13.5 under a lid at 10
   EXPECT_NE(lid[0].find("Fluid 'a': 4 of 6 particles start outside"), std::string::npos) << lid[0];
+}
+
+// "Object 'name': K of N particles ..." -> {K, N}; {-1, -1} when the line is not one.
+std::pair<long, long> objectCounts(const std::string& line, const std::string& name) {
+  const std::string head = "Object '" + name + "': ";
+  if (line.rfind(head, 0) != 0) return {-1, -1};
+  long k = -1, n = -1;
+  if (std::sscanf(line.c_str() + head.size(), "%ld of %ld particles start outside the container", &k, &n) != 2)
+    return {-1, -1};
+  return {k, n};
+}
+
+std::string object(const std::string& name, const std::string& position, bool dynamic) {
+  return "<Object><Name>" + name + "</Name><Shape>box</Shape><Size>2 2 2</Size><ParticleSize>0.5</ParticleSize>"
+         "<InitialPosition>" + position + "</InitialPosition><IsDynamic>" + (dynamic ? "true" : "false") +
+         "</IsDynamic></Object>";
+}
+
+TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
+  // The container spans x [-5, 5]: a body centred inside has none outside, one centred
+  // on the wall about half, one beyond it all; a static one is told it stays there.
+  EXPECT_TRUE(warningsOf(kBox + object("inside", "0 3 0", true)).empty());
+  const std::vector<std::string> w = warningsOf(kBox + object("half", "5 3 0", true) + object("beyond", "9 3 0", true) +
+                                                object("fixed", "0 3 -5", false));
+  ASSERT_EQ(w.size(), 3u);
+  const auto half = objectCounts(w[0], "half");
+  EXPECT_GT(half.first, 0) << w[0];
+  EXPECT_LT(half.first, half.second) << w[0];
+  EXPECT_GE(2 * half.first, half.second * 3 / 10) << "about half of the body: " << w[0];
+  EXPECT_LE(2 * half.first, half.second * 17 / 10) << "about half of the body: " << w[0];
+  EXPECT_NE(w[0].find("push the body back inside"), std::string::npos) << w[0];
+  const auto beyond = objectCounts(w[1], "beyond");
+  EXPECT_GT(beyond.first, 0) << w[1];
+  EXPECT_EQ(beyond.first, beyond.second) << "all of it: " << w[1];
+  EXPECT_EQ(beyond.second, half.second) << "the same body";
+  const auto fixed = objectCounts(w[2], "fixed");
+  EXPECT_GT(fixed.first, 0) << w[2];
+  EXPECT_NE(w[2].find("a static body never moves"), std::string::npos) << w[2];
+  // Without a container nothing is outside.
+  EXPECT_TRUE(warningsOf(object("far", "100 3 0", true)).empty());
 }
 
 TEST(CompileWarnings, CountsParticlesThatSitExactlyOnAnother) {
