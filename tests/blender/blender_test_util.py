@@ -67,6 +67,11 @@ def close(a, b, tol):
 
 
 def finish():
+    # os._exit skips Blender's own clean-up, which would remove its session folder
+    # (/tmp/blender_XXXXXX): remove it here, or every test run leaves one behind.
+    import shutil
+    if bpy.app.tempdir:
+        shutil.rmtree(bpy.app.tempdir, ignore_errors=True)
     if FAILURES:
         print(f"{len(FAILURES)} check(s) failed", flush=True)
         sys.stdout.flush()

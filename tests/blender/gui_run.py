@@ -12,7 +12,7 @@ import time
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from blender_test_util import FAILURES, args, check, empty_scene, install_addon  # noqa: E402
+from blender_test_util import args, check, empty_scene, finish, install_addon  # noqa: E402
 
 A = args()
 install_addon(A)
@@ -174,10 +174,7 @@ def tick():
 
 
 def end():
-    print(f"{len(FAILURES)} check(s) failed" if FAILURES else "all checks passed", flush=True)
-    code = 1 if FAILURES else 0
-    sys.stdout.flush()
-    os._exit(code)
+    finish()  # prints the verdict, removes Blender's session folder, exits
 
 
 bpy.app.timers.register(tick, first_interval=0.5)
