@@ -2,7 +2,7 @@
 # Installs what is missing, builds softsub and its tests with warnings as errors, and runs
 # the whole suite with CTest.
 #   scripts/test.sh             Release build in build-test/
-#   scripts/test.sh --sanitize  AddressSanitizer + UBSan build (RelWithDebInfo) in build-asan/
+#   scripts/test.sh --sanitize  AddressSanitizer + UBSan build (-O1 -g1) in build-asan/
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -11,7 +11,11 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 mode=${1:-}
 case "$mode" in
   "") dir=build-test; config=(-DCMAKE_BUILD_TYPE=Release) ;;
-  --sanitize) dir=build-asan; config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSUB_SANITIZE=ON) ;;
+  # -O1 -g1 (line tables: stack traces keep file and line): with UBSan's checks GCC spends
+  # 2.5 times as long compiling at -O2 -g, which made this build 22 of CI's 40 minutes;
+  # the suite runs about 5% slower at -O1.
+  --sanitize) dir=build-asan
+    config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DSOFTSUB_SANITIZE=ON) ;;
   --fuzz) exec ./scripts/fuzz.sh ;;
   *) echo "usage: $0 [--sanitize | --fuzz]" >&2; exit 2 ;;
 esac
