@@ -352,10 +352,31 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
       if (count == 1 || count == 2) ++result.votedVoxels;
       votes = count >= 2 ? 1 : 0;
     }
+    if (options.thinParts) {
+      std::vector<std::uint8_t> surface(grid.voxels(), 0);
+      markSurface(grid, local, mesh.triangles, usable, surface);
+      const auto insideNear = [&](std::size_t x, std::size_t y, std::size_t z) {
+        for (std::size_t c = z > 0 ? z - 1 : 0; c <= std::min<std::size_t>(z + 1, grid.n[2] - 1); ++c)
+          for (std::size_t b = y > 0 ? y - 1 : 0; b <= std::min<std::size_t>(y + 1, grid.n[1] - 1); ++b)
+            for (std::size_t a = x > 0 ? x - 1 : 0; a <= std::min<std::size_t>(x + 1, grid.n[0] - 1); ++a)
+              if (cells[grid.index(a, b, c)] == 1) return true;
+        return false;
+      };
+      // Marked 2 (not 1) so that one added sample does not hide its neighbours.
+      for (std::size_t z = 0; z < grid.n[2]; ++z)
+        for (std::size_t y = 0; y < grid.n[1]; ++y)
+          for (std::size_t x = 0; x < grid.n[0]; ++x) {
+            const std::size_t i = grid.index(x, y, z);
+            if (surface[i] && cells[i] == 0 && !insideNear(x, y, z)) {
+              cells[i] = 2;
+              ++result.thinVoxels;
+            }
+          }
+    }
   }
 
   std::size_t total = 0;
-  for (std::uint8_t c : cells) total += c;
+  for (std::uint8_t c : cells) total += c != 0 ? 1 : 0;
   result.points.reserve(total);
   for (std::size_t z = 0; z < grid.n[2]; ++z)
     for (std::size_t y = 0; y < grid.n[1]; ++y)

@@ -14,6 +14,10 @@ namespace softsub::geometry {
 struct MeshFillOptions {
   double spacing = 1;        ///< lattice step = particle diameter, scene units, > 0
   bool surfaceOnly = false;  ///< sample the surface instead of the volume (thin shells, open meshes)
+  /// Volume fill: also keep the surface samples (as surfaceOnly makes them) that have no
+  /// inside voxel among their 26 neighbours: the parts of the mesh thinner than about one
+  /// spacing (a lid, a blade, a handle), which hold no lattice point of their own.
+  bool thinParts = false;
   std::uint64_t maxParticles = 20'000'000;  ///< refuse (InputError) before allocating more voxels than this
 };
 
@@ -22,6 +26,7 @@ struct MeshFillResult {
   std::vector<Vec3> points;        ///< lattice points inside (or on the surface), x fastest, then y, then z
   std::uint64_t votedVoxels = 0;   ///< voxels where the three ray directions did not all agree (volume fill)
   std::uint64_t testedVoxels = 0;  ///< voxels of the grid
+  std::uint64_t thinVoxels = 0;    ///< points added by MeshFillOptions::thinParts
   std::vector<std::string> warnings;  ///< one sentence each, e.g. the axes disagree: the mesh is not closed
 };
 

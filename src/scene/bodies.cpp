@@ -87,11 +87,17 @@ bool isClosed(const geometry::TriangleMesh& mesh) {
 }
 
 // The body's particles, in scaled geometry coordinates: the outer two layers of a volume
-// fill of a closed mesh, or a surface fill of an open one; at least one particle.
+// fill of a closed mesh, with surface samples where it is thinner than about one particle
+// (a lid 0.2 thick at the default particle size 0.5 would otherwise hold no particle at
+// all, and fluids would fall through it), or a surface fill of an open mesh; at least one
+// particle.
 std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spacing, const Vec3& center) {
   const bool closed = isClosed(scaled);
-  const geometry::MeshFillResult r = geometry::fillMesh(
-      scaled, {.spacing = spacing, .surfaceOnly = !closed, .maxParticles = geometry::meshFillBound(scaled, spacing)});
+  const geometry::MeshFillResult r =
+      geometry::fillMesh(scaled, {.spacing = spacing,
+                                  .surfaceOnly = !closed,
+                                  .thinParts = closed,
+                                  .maxParticles = geometry::meshFillBound(scaled, spacing)});
   std::vector<Vec3> points = closed ? geometry::latticeShell(r.points, spacing, 2) : r.points;
   if (points.empty()) points.push_back(center);  // smaller than one particle
   return points;

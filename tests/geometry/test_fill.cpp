@@ -2,6 +2,7 @@
 // meshes that are open, duplicated, inverted, degenerate or too large.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -249,6 +250,62 @@ TEST(FillMesh, DegenerateTrianglesAreSkippedWithoutCrashing) {
 
 namespace softsub::geometry {
 namespace {
+
+// A box with a thin plate on top (a table: a thick leg under a top thinner than the
+// spacing): the volume fill finds no lattice point in the plate, thinParts samples its
+// surface there, and leaves the thick part exactly as it was.
+TEST(FillMesh, ThinPartsSampleWhatIsThinnerThanTheSpacingAndLeaveTheRestAlone) {
+  const double s = 0.5;
+  const auto leg = boxMesh(Vec3(0, 0, 0), Vec3(2, 3, 2));
+  const auto top = boxMesh(Vec3(-3, 3, -3), Vec3(5, 3.2, 5));  // 0.2 thick
+  const auto table = merged(leg, top);
+  MeshFillOptions o;
+  o.spacing = s;
+  const MeshFillResult plain = fillMesh(table, o);
+  o.thinParts = true;
+  const MeshFillResult thin = fillMesh(table, o);
+  // Without thinParts nothing lies above the leg's top (y = 3) but the points of the leg.
+  std::size_t plainInTop = 0;
+  for (const Vec3& p : plain.points) plainInTop += p.y() > 3 && (p.x() < 0 || p.x() > 2 || p.z() < 0 || p.z() > 2);
+  EXPECT_EQ(plainInTop, 0U);
+  ASSERT_GT(thin.thinVoxels, 0U);
+  EXPECT_EQ(thin.points.size(), plain.points.size() + thin.thinVoxels);
+  EXPECT_EQ(plain.thinVoxels, 0U);
+  // Every plain point is kept, and every added one lies within s/2 of the plate (its
+  // surface samples) and covers it: each cell of a 0.5 grid over the plate has one.
+  std::size_t kept = 0, added = 0;
+  std::vector<int> covered(16 * 16, 0);
+  for (const Vec3& p : thin.points) {
+    const bool old = std::find(plain.points.begin(), plain.points.end(), p) != plain.points.end();
+    kept += old ? 1 : 0;
+    if (old) continue;
+    ++added;
+    EXPECT_GT(p.y(), 3 - s / 2 - 1e-9);
+    EXPECT_LT(p.y(), 3.2 + s / 2 + 1e-9);
+    EXPECT_GE(p.x(), -3 - s / 2);
+    EXPECT_LE(p.x(), 5 + s / 2);
+    const int cx = std::clamp(static_cast<int>(std::floor((p.x() + 3) / s)), 0, 15);
+    const int cz = std::clamp(static_cast<int>(std::floor((p.z() + 3) / s)), 0, 15);
+    covered[static_cast<std::size_t>(cx + 16 * cz)] = 1;
+  }
+  EXPECT_EQ(kept, plain.points.size());
+  EXPECT_EQ(added, thin.thinVoxels);
+  // The plate's cells above the leg are covered by the leg's own points instead.
+  for (int cz = 0; cz < 16; ++cz)
+    for (int cx = 0; cx < 16; ++cx) {
+      const bool overLeg = cx >= 5 && cx <= 10 && cz >= 5 && cz <= 10;
+      if (!overLeg) {
+        EXPECT_TRUE(covered[static_cast<std::size_t>(cx + 16 * cz)]) << cx << ' ' << cz;
+      }
+    }
+  // A body thick everywhere gets nothing added.
+  MeshFillOptions thick;
+  thick.spacing = s;
+  thick.thinParts = true;
+  const MeshFillResult cube = fillMesh(boxMesh(Vec3(0.1, 0.2, 0.3), Vec3(4.1, 3.2, 2.3)), thick);
+  EXPECT_EQ(cube.thinVoxels, 0U);
+  EXPECT_EQ(cube.points.size(), fill(boxMesh(Vec3(0.1, 0.2, 0.3), Vec3(4.1, 3.2, 2.3)), s).points.size());
+}
 
 TEST(LatticeShell, KeepsTheOuterLayersOfACube) {
   std::vector<Vec3> cube;
