@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -346,6 +347,17 @@ void checkFaces(const aiScene& scene, const std::string& name) {
     if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
       throw InputError({name, 0, "mesh"}, fmt::format("mesh {} has vertices without positions", m),
                        "vertex positions");
+    // Before post-processing: joining identical vertices compares positions, and a NaN
+    // one can be merged into another, leaving a degenerate triangle instead of this error.
+    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+      const aiVector3D& p = mesh->mVertices[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw InputError({name, 0, "mesh"},
+                         fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {})", i, m,
+                                     mesh->mName.length > 0 ? fmt::format(" '{}'", mesh->mName.C_Str()) : "", p.x,
+                                     p.y, p.z),
+                         "finite coordinates");
+    }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices == 0 || face.mIndices == nullptr)
@@ -360,6 +372,32 @@ void checkFaces(const aiScene& scene, const std::string& name) {
     }
   }
 }
+
+/// Assimp's file access for one mesh file: the files the mesh refers to (a glTF's
+/// buffers, an OBJ's material library) are opened only inside `root`; the others are
+/// refused and remembered, so that the error can name them.
+class ConfinedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit ConfinedIOSystem(fs::path root) : root_(std::move(root)) {}
+  bool Exists(const char* file) const override { return allowed(file) && DefaultIOSystem::Exists(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    return allowed(file) ? DefaultIOSystem::Open(file, mode) : nullptr;
+  }
+  [[nodiscard]] const std::vector<std::string>& refused() const { return refused_; }
+
+ private:
+  bool allowed(const char* file) const {
+    std::error_code ec;
+    const fs::path target = fs::weakly_canonical(fs::path(file), ec);
+    const fs::path rel = ec ? fs::path() : target.lexically_relative(root_);
+    if (!rel.empty() && *rel.begin() != ".." && rel != ".") return true;
+    const std::string shown = fs::path(file).lexically_normal().string();
+    if (std::find(refused_.begin(), refused_.end(), shown) == refused_.end()) refused_.push_back(shown);
+    return false;
+  }
+  fs::path root_;
+  mutable std::vector<std::string> refused_;  // Exists is const in assimp's interface
+};
 
 }  // namespace
 
@@ -389,7 +427,7 @@ std::string openMeshWarning(const MeshEdges& edges) {
       edges.boundary);
 }
 
-TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
+TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report, const fs::path& confineTo) {
   const std::string name = file.string();
   const std::uintmax_t size = checkReadable(file, name);
   if (size == 0) throw InputError({name, 0, "mesh"}, "the mesh has no triangles (the file is empty)");
@@ -397,6 +435,14 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
   checkStlCounts(file, name, size);
 
   Assimp::Importer importer;
+  ConfinedIOSystem* confined = nullptr;
+  if (!confineTo.empty()) {
+    std::error_code ec;
+    fs::path root = fs::weakly_canonical(confineTo, ec);
+    if (ec) root = confineTo;
+    confined = new ConfinedIOSystem(root);
+    importer.SetIOHandler(confined);  // the importer owns it from here
+  }
   // Only steps that reshape what the file holds: nothing invents geometry (no normals,
   // hole filling or smoothing). SortByPType puts points and lines in meshes of their own,
   // which MeshBuilder skips; they are not removed here, so a file of points alone is
@@ -405,6 +451,14 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
   // faces and abort the process on one without indices (found by the fuzzer:
   // fuzz/regressions/mesh_loader/ply-empty-faces-abort).
   const auto cannotParse = [&] {
+    if (confined != nullptr && !confined->refused().empty())
+      return InputError({name, 0, "mesh"},
+                        fmt::format("the mesh refers to '{}', outside the scene's folder '{}' (a scene reads "
+                                    "files only inside its folder)",
+                                    confined->refused().front(), confineTo.string()),
+                        "meshes whose own references (a glTF's buffers and images, an OBJ's material "
+                        "library) lie in the scene's folder too: a scene and its folder are moved as a "
+                        "whole");
     const std::string why = importer.GetErrorString();
     return InputError({name, 0, "mesh"},
                       fmt::format("cannot parse the file: {}", why.empty() ? "unknown error" : why),
@@ -423,7 +477,15 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report) {
     for (unsigned m = 0; m < scene->mNumMeshes; ++m)
       if (scene->mMeshes[m] != nullptr) builder.add(*scene->mMeshes[m], m, Mat4::Identity());
   }
-  return builder.finish(report);
+  TriangleMesh out = builder.finish(report);
+  if (report != nullptr && confined != nullptr && !confined->refused().empty()) {
+    const std::size_t more = confined->refused().size() - 1;
+    report->warnings.push_back(fmt::format(
+        "did not read '{}'{}, which the mesh refers to: outside the scene's folder (a scene reads files only "
+        "inside its folder)",
+        confined->refused().front(), more > 0 ? fmt::format(" (nor {} other path(s))", more) : std::string()));
+  }
+  return out;
 }
 
 }  // namespace softsub::geometry

@@ -46,6 +46,12 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// reason); InputError {file, 0, "mesh"} when the file is larger than
 /// kMaxMeshFileBytes, when assimp cannot parse it (assimp's message), when a vertex is
 /// NaN or infinite (names the vertex), or when no triangle is left.
-[[nodiscard]] TriangleMesh loadMesh(const std::filesystem::path& file, MeshLoadReport* report = nullptr);
+///
+/// `confineTo` (a scene's folder; empty: anywhere): the files the mesh itself refers to
+/// (a glTF's buffers, an OBJ's material library) are read only inside it. A refused one
+/// is an InputError naming it when the mesh cannot be read without it, and a warning in
+/// `report` when it can (an OBJ without its materials).
+[[nodiscard]] TriangleMesh loadMesh(const std::filesystem::path& file, MeshLoadReport* report = nullptr,
+                                    const std::filesystem::path& confineTo = {});
 
 }  // namespace softsub::geometry

@@ -112,7 +112,9 @@ const PairDesc* findPair(const InteractionsDesc& in, const std::string& a, const
 }
 
 geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDir) {
-  if (!o.geometry.empty()) return geometry::loadMesh(std::filesystem::path(baseDir) / o.geometry);
+  if (!o.geometry.empty())
+    return geometry::loadMesh(std::filesystem::path(baseDir) / o.geometry, nullptr,
+                              baseDir.empty() ? std::filesystem::path(".") : std::filesystem::path(baseDir));
   const std::vector<double>& s = o.size;
   switch (o.shape) {
     case ObjectShape::Sphere: return geometry::sphereMesh(Vec3::Zero(), s.at(0), kSegments / 2, kSegments);

@@ -154,7 +154,8 @@ Compiled compile(const SceneDesc& desc) {
       // The reader checked the path, the mesh and its bound against the particle cap;
       // the loader's and the fill's warnings (repairs, open meshes) are not shown here.
       const geometry::TriangleMesh mesh =
-          geometry::loadMesh(std::filesystem::path(desc.baseDir) / fill.geometry);
+          geometry::loadMesh(std::filesystem::path(desc.baseDir) / fill.geometry, nullptr,
+                             desc.baseDir.empty() ? std::filesystem::path(".") : std::filesystem::path(desc.baseDir));
       const geometry::MeshFillResult r = geometry::fillMesh(
           mesh, {.spacing = fill.spacing,
                  .surfaceOnly = fill.surface,

@@ -553,7 +553,7 @@ class SceneReader {
     geometry::TriangleMesh mesh;
     geometry::MeshLoadReport report;
     try {
-      mesh = geometry::loadMesh(target, &report);
+      mesh = geometry::loadMesh(target, &report, base);
     } catch (const InputError& e) {
       cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.problem()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");

@@ -234,6 +234,12 @@ TEST(LoadMesh, NonFiniteVertexIsNamed) {
     const std::string obj = std::string("v 0 0 0\nv 1 0 0\nv 0 ") + bad + " 0\nf 1 2 3\n";
     const InputError e = expectInputError([&] { (void)loadMesh(dir.write("bad.obj", obj)); });
     EXPECT_NE(e.problem().find("vertex 2"), std::string::npos) << bad << ": " << e.what();
+    // A bad vertex in the middle: joining identical vertices used to merge a NaN one into
+    // its neighbour, and the error said "1 degenerate triangle dropped" instead.
+    const std::string middle = std::string("v 0 0 0\nv 1 ") + bad + " 0\nv 0 1 0\nf 1 2 3\n";
+    const InputError m = expectInputError([&] { (void)loadMesh(dir.write("middle.obj", middle)); });
+    EXPECT_NE(m.problem().find("vertex 1"), std::string::npos) << bad << ": " << m.what();
+    EXPECT_NE(m.problem().find("not finite"), std::string::npos) << bad << ": " << m.what();
   }
 }
 

@@ -3,11 +3,13 @@
 // The rules that need no file are rows of reader_error_rows.h.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "core/error.h"
+#include "geometry/mesh_loader.h"
 #include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene/writer.h"
@@ -120,6 +122,65 @@ TEST(MeshFill, FolderInsteadOfAMeshIsAnInputError) {
   writeText(tmp.path() / "t.scene", meshScene("geo/blob.obj", 0.5));
   const InputError e = readFileError(tmp.path() / "t.scene");
   EXPECT_EQ(e.where().element, "Fluid 'goo'/Fill[1]/Geometry");
+}
+
+// A glTF cube [-1, 1]^3 whose buffer (8 float positions, 36 16-bit indices) is at `uri`.
+std::string gltfCube(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)"
+         R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],)"
+         R"("buffers": [{"uri": ")" + uri + R"(", "byteLength": 168}],)"
+         R"("bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96}, {"buffer": 0, "byteOffset": 96, "byteLength": 72}],)"
+         R"("accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1]},)"
+         R"({"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}]})";
+}
+
+void writeCubeBuffer(const fs::path& file) {
+  std::string bytes;
+  for (int k = 0; k < 8; ++k) {
+    const float v[3] = {(k & 1) ? 1.f : -1.f, (k & 2) ? 1.f : -1.f, (k & 4) ? 1.f : -1.f};
+    bytes.append(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  const std::uint16_t faces[36] = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                   2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  bytes.append(reinterpret_cast<const char*>(faces), sizeof faces);
+  fs::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+// The path rule holds for the files a mesh refers to as well: a glTF's buffer outside the
+// scene's folder is refused and named (it used to be read), one inside is read; an OBJ's
+// material library outside is not read, with a warning, and the mesh is still usable.
+TEST(MeshFill, FilesAMeshRefersToMustLieInTheSceneFolderToo) {
+  TempFolder tmp;
+  writeCubeBuffer(tmp.path() / "outside.bin");
+  writeCubeBuffer(tmp.path() / "scene/geo/cube.bin");
+  writeText(tmp.path() / "scene/geo/out.gltf", gltfCube("../../outside.bin"));
+  writeText(tmp.path() / "scene/geo/in.gltf", gltfCube("cube.bin"));
+  writeText(tmp.path() / "scene/out.scene", meshScene("geo/out.gltf", 0.5));
+  writeText(tmp.path() / "scene/in.scene", meshScene("geo/in.gltf", 0.5));
+
+  const InputError e = readFileError(tmp.path() / "scene/out.scene");
+  EXPECT_EQ(e.where().line, 6);
+  EXPECT_NE(e.problem().find("refers to '" + (tmp.path() / "outside.bin").string() + "', outside the scene's folder"),
+            std::string::npos)
+      << e.what();
+  const SceneDesc in = readSceneFile((tmp.path() / "scene/in.scene").string());
+  EXPECT_EQ(compile(in).state.particles.size(), 64U);  // a 2 x 2 x 2 cube at spacing 0.5
+
+  writeText(tmp.path() / "scene/geo/cube.obj", "mtllib ../../outside.mtl\n" + boxObj(1.0));
+  writeText(tmp.path() / "outside.mtl", "newmtl a\nKd 1 0 0\n");
+  geometry::MeshLoadReport report;
+  const geometry::TriangleMesh mesh =
+      geometry::loadMesh(tmp.path() / "scene/geo/cube.obj", &report, tmp.path() / "scene");
+  EXPECT_EQ(mesh.triangles.size(), 12U);
+  ASSERT_FALSE(report.warnings.empty());
+  EXPECT_NE(report.warnings.back().find("did not read '" + (tmp.path() / "outside.mtl").string() + "'"),
+            std::string::npos)
+      << report.warnings.back();
+  // Without a folder to keep to (softsub fill's own mesh), everything is read.
+  geometry::MeshLoadReport free;
+  (void)geometry::loadMesh(tmp.path() / "scene/geo/cube.obj", &free);
+  for (const std::string& w : free.warnings) EXPECT_EQ(w.find("did not read"), std::string::npos) << w;
 }
 
 TEST(MeshFill, SymlinkLeavingTheSceneFolderIsRefused) {
