@@ -275,7 +275,7 @@ int runCommand(const RunOptions& o) {
       return static_cast<int>(ExitCode::Ok);
     }
     if (resumed.frame >= 0 && chatty)
-      fmt::print(stderr, "resuming after frame {} ({} complete)\n", resumed.frame, folderText(outDir));
+      fmt::print(stderr, "resuming in {} after frame {}\n", folderText(outDir), resumed.frame);
     if (resumed.frame < 0) forgetEarlierRun(outDir, loaded.name);
   }
 

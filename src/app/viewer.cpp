@@ -17,6 +17,7 @@
 #include "render/offscreen.h"
 #include "render/renderer.h"
 #include "render_playback.h"
+#include "run_journal.h"
 #include "scene_source.h"
 #include "scene_view.h"
 #include "session/live_session.h"
@@ -240,6 +241,10 @@ void Viewer::writeCaches() {
     return;
   }
   try {
+    // These frames are not a `run`'s: the journal (manifests, checkpoints) an earlier run
+    // of this scene left in the folder goes first, as when `run` starts afresh, so that
+    // `run --resume` and `info` cannot take the viewer's frames for that run's.
+    if (session_->recordedFrames() > 0) forgetEarlierRun(session_->outputDir(), session_->sceneName());
     const auto written = session_->writeRecorded();
     if (written.frames == 0) {
       setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames"

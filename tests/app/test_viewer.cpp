@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "app_test_util.h"
+#include "cache/manifest.h"
 #include "cache/sim_format.h"
 #include "picture_checks.h"
 
@@ -90,6 +91,37 @@ fs::path recordFrames(const fs::path& scene, int frames, const fs::path& dir) {
                                    dir);
   EXPECT_EQ(run.code, 0) << run.err;
   return recorded;
+}
+
+// S into the folder of an earlier `run` of the same scene: that run's journal goes, as
+// when `run` starts afresh. It used to stay, and `run --resume` took the viewer's tweaked
+// frames for the earlier run's and continued them from the old run's checkpoint.
+TEST(Viewer, KeySInAnEarlierRunsFolderRemovesThatRunsJournal) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const fs::path out = tmp / "honey-dropSim";
+  const RunResult first = runSoftsub("run " + quote(scene) + " --frames 3 --formats sim -q", tmp.path());
+  ASSERT_EQ(first.code, 0) << first.err;
+  ASSERT_FALSE(cache::manifestFrames(out, "honey-drop").empty());
+  ASSERT_FALSE(cache::checkpointFrames(out, "honey-drop").empty());
+  const fs::path script = tmp / "s.txt";
+  writeText(script, "set fluid honey Viscosity 7.5\nframes 2\nkey S\nquit\n");
+  const RunResult r = view(scene, script, tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_TRUE(fs::is_regular_file(out / "honey-drop.0002.sim"));
+  EXPECT_TRUE(cache::manifestFrames(out, "honey-drop").empty());
+  EXPECT_TRUE(cache::checkpointFrames(out, "honey-drop").empty());
+  // So a resumed run starts over at frame 0 instead of mixing the two simulations.
+  const RunResult resumed =
+      runSoftsub("run " + quote(scene) + " --frames 4 --formats sim -q --resume", tmp.path());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  const RunResult clean = runSoftsub("run " + quote(scene) + " --frames 4 --formats sim -q --out clean", tmp.path());
+  ASSERT_EQ(clean.code, 0) << clean.err;
+  for (int f = 0; f <= 4; ++f) {
+    const std::string name = fmt::format("honey-drop.{:04}.sim", f);
+    EXPECT_EQ(readFile(out / name), readFile(tmp / "clean" / name)) << name;
+  }
 }
 
 TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
