@@ -41,10 +41,22 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
 
 namespace {
 
+// Text for an XML comment: no "--" inside, no '-' at the end (either makes the file
+// malformed for strict parsers: xmllint, Python's ElementTree); such a '-' is written %2D.
+std::string commentText(const std::string& text) {
+  std::string out;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const bool unsafe = text[k] == '-' && (k + 1 == text.size() || text[k + 1] == '-');
+    out += unsafe ? std::string("%2D") : std::string(1, text[k]);
+  }
+  return out;
+}
+
 std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
-  // The fluid's own scales follow the spacing: particles touch at rest.
+  // The fluid's own scales follow the spacing: particles touch at rest. The comment says
+  // how it was made without the command's "--" (not allowed in an XML comment).
   std::string s = fmt::format(
-      "<!-- softsub fill {} --spacing {}{}: {} particles -->\n"
+      "<!-- softsub fill of {} at spacing {}{}: {} particles -->\n"
       "<Fluid>\n"
       "  <Name>{}</Name>\n"
       "  <ParticleSize>{}</ParticleSize>\n"
@@ -52,7 +64,7 @@ std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
       "  <InteractionDistance>{}</InteractionDistance>\n"
       "  <NumberOfParticles>{}</NumberOfParticles>\n"
       "  <Particles>\n",
-      o.mesh, o.spacing, o.surface ? " --surface" : "", r.points.size(), o.name, o.spacing, o.spacing,
+      commentText(o.mesh), o.spacing, o.surface ? ", surface only" : "", r.points.size(), o.name, o.spacing, o.spacing,
       1.5 * o.spacing, r.points.size());
   for (const Vec3& p : r.points) s += fmt::format("    {} {} {}\n", p.x(), p.y(), p.z());
   s += "  </Particles>\n</Fluid>\n";

@@ -32,6 +32,20 @@ TEST(FillCommand, SnippetIsAFluidTheReaderAccepts) {
   EXPECT_EQ(d.fluids[0].name, "cube");
   EXPECT_EQ(d.fluids[0].particles.size(), 27u);  // 3 x 3 x 3 lattice points inside
   EXPECT_DOUBLE_EQ(d.fluids[0].params.particleSize, 1.0);
+  // Well-formed XML for strict parsers too: no "--" inside a comment, even when the mesh's
+  // name has one or ends in '-' (the comment used to quote the command line, "--spacing").
+  writeBoxObj(tmp / "a--b-.obj", 3.0);
+  for (const std::string mesh : {"box.obj", "a--b-.obj"}) {
+    const RunResult m = runSoftsub("fill " + mesh + " --spacing 1 --surface", tmp.path());
+    ASSERT_EQ(m.code, 0) << m.err;
+    for (std::size_t open = m.out.find("<!--"); open != std::string::npos; open = m.out.find("<!--", open + 4)) {
+      const std::size_t close = m.out.find("-->", open + 4);
+      ASSERT_NE(close, std::string::npos);
+      const std::string body = m.out.substr(open + 4, close - open - 4);
+      EXPECT_EQ(body.find("--"), std::string::npos) << body;
+      EXPECT_NE(body.back(), '-') << body;
+    }
+  }
 }
 
 TEST(FillCommand, BadInputExitsTwoMissingFileThree) {
