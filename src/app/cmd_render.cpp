@@ -173,7 +173,7 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
   cmd->add_option("--frames", o.frames, "Frames to draw: a:b (inclusive), a:, :b or a (default: all)");
   cmd->add_option("--movie", o.movie, "Also encode the pictures into this MP4 file (needs ffmpeg)");
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps> (1 to 10000, as in a scene)")
-      ->check(CLI::Range(1, 10000));
+      ->check(wholeNumberIn(1, 10000));
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
       ->check(particleCap());
   cmd->add_flag("--surface", o.surface,

@@ -20,6 +20,7 @@
 #include "cmd_run.h"
 #include "cmd_schema.h"
 #include "cmd_view.h"
+#include "number_checks.h"
 #include "core/error.h"
 #include "seed_flags.h"
 
@@ -59,7 +60,7 @@ int runApp(int argc, char** argv) {
   root.add_option("--threads", threads,
                   "Threads for the simulation, surfaces and pictures, 1 to 1024 (default 0: all cores); "
                   "results are bitwise the same for any count")
-      ->check(CLI::Range(0, 1024));
+      ->check(softsub::app::wholeNumberIn(0, 1024));
   for (CLI::App* sub : {run, info, fill, schema, render, view, mesh, bench}) sub->fallthrough();
   for (CLI::App* sub : bench->get_subcommands({})) sub->fallthrough();
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is
@@ -93,7 +94,7 @@ int runApp(int argc, char** argv) {
       fmt::print(stderr, "Run 'softsub --help' for usage.\n");
       return code(ExitCode::BadInput);
     }
-    printError(e.what());
+    printError(std::string("command line: ") + e.what());
     fmt::print(stderr, "Run 'softsub --help' or 'softsub COMMAND --help' for usage.\n");
     return code(ExitCode::BadInput);
   }

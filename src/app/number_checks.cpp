@@ -1,6 +1,8 @@
 #include "number_checks.h"
 
+#include <charconv>
 #include <cmath>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -23,6 +25,38 @@ CLI::Validator finiteNumberIn(double least, double most, const std::string& allo
 
 CLI::Validator finiteNonNegative() {
   return finiteNumberIn(0.0, std::numeric_limits<double>::max(), "a finite number >= 0");
+}
+
+CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most) {
+  const std::string allowed = most == std::numeric_limits<std::int64_t>::max()
+                                  ? fmt::format("integer >= {}", least)
+                                  : fmt::format("integer [{}, {}]", least, most);
+  return CLI::Validator(
+      [least, most, allowed](std::string& text) -> std::string {
+        std::int64_t v = 0;
+        const char* end = text.data() + text.size();
+        const char* first = text.data() + (text.starts_with('+') ? 1 : 0);
+        const auto [ptr, ec] = std::from_chars(first, end, v);
+        if (ec == std::errc::result_out_of_range)
+          return fmt::format("{} is out of range (allowed: {})", text, allowed);
+        if (ec != std::errc() || ptr != end || first == end)
+          return fmt::format("{} is not a whole number (allowed: {})", text, allowed);
+        if (v < least || v > most) return fmt::format("{} is out of range (allowed: {})", text, allowed);
+        return {};
+      },
+      allowed);
+}
+
+CLI::Validator oneOf(std::vector<std::string> names) {
+  std::string allowed;
+  for (const std::string& n : names) allowed += (allowed.empty() ? "" : ", ") + n;
+  return CLI::Validator(
+      [names = std::move(names), allowed](std::string& text) -> std::string {
+        for (const std::string& n : names)
+          if (text == n) return {};
+        return fmt::format("{} is not one of the choices (allowed: {})", text, allowed);
+      },
+      "one of " + allowed);
 }
 
 CLI::Validator particleCap() { return finiteNumberIn(1.0, 1.8e19, "a whole number >= 1"); }

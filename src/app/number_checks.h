@@ -1,8 +1,10 @@
 #pragma once
 /// Command-line checks for floating-point options. CLI11's Range and NonNegativeNumber
 /// compare with < and >, which NaN passes; these refuse NaN and the infinities too.
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -14,6 +16,15 @@ namespace softsub::app {
 
 /// A finite number >= 0.
 [[nodiscard]] CLI::Validator finiteNonNegative();
+
+/// A whole number in [least, most] (most = INT64_MAX: no upper end), refused in our
+/// words: "1.5 is not a whole number (allowed: integer [0, 1000000])", "2000 is out of
+/// range (allowed: integer [0, 1024])". CLI11's Range says "Value 2000 not in range 0 to
+/// 1024", and a value its conversion refuses "Could not convert: --frames = 1.5".
+[[nodiscard]] CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most);
+
+/// One of `names`: "rk4 is not one of the choices (allowed: a, b, c)".
+[[nodiscard]] CLI::Validator oneOf(std::vector<std::string> names);
 
 /// A particle count cap: >= 1 ("0 is out of range (allowed: a whole number >= 1)", not
 /// CLI::PositiveNumber's range up to the largest double written out in 309 digits).

@@ -339,7 +339,8 @@ void checkStlCounts(const fs::path& file, const std::string& name, std::uintmax_
                      "a triangle count that fits the file (84 + 50 bytes a triangle)");
 }
 
-/// Every face of every mesh has indices, and each is a vertex of its mesh.
+/// Every face of every mesh has indices, each a vertex of its mesh, and every vertex is
+/// finite.
 void checkFaces(const aiScene& scene, const std::string& name) {
   for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
     const aiMesh* mesh = scene.mMeshes[m];
@@ -347,17 +348,6 @@ void checkFaces(const aiScene& scene, const std::string& name) {
     if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
       throw InputError({name, 0, "mesh"}, fmt::format("mesh {} has vertices without positions", m),
                        "vertex positions");
-    // Before post-processing: joining identical vertices compares positions, and a NaN
-    // one can be merged into another, leaving a degenerate triangle instead of this error.
-    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-      const aiVector3D& p = mesh->mVertices[i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        throw InputError({name, 0, "mesh"},
-                         fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {})", i, m,
-                                     mesh->mName.length > 0 ? fmt::format(" '{}'", mesh->mName.C_Str()) : "", p.x,
-                                     p.y, p.z),
-                         "finite coordinates");
-    }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices == 0 || face.mIndices == nullptr)
@@ -369,6 +359,17 @@ void checkFaces(const aiScene& scene, const std::string& name) {
                            fmt::format("face {} of mesh {} uses vertex {}, but the mesh has {}", f, m,
                                        face.mIndices[k], mesh->mNumVertices),
                            "vertex indices below the vertex count");
+    }
+    // Before post-processing: joining identical vertices compares positions, and a NaN
+    // one can be merged into another, leaving a degenerate triangle instead of this error.
+    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+      const aiVector3D& p = mesh->mVertices[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw InputError({name, 0, "mesh"},
+                         fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {})", i, m,
+                                     mesh->mName.length > 0 ? fmt::format(" '{}'", mesh->mName.C_Str()) : "", p.x,
+                                     p.y, p.z),
+                         "finite coordinates");
     }
   }
 }

@@ -110,7 +110,13 @@ TEST(Cli, NegativeAndOutOfRangeOverridesExitTwoAndWriteNothing) {
       {"run --substeps=-3", "error: command line: --substeps: -3 is out of range"},
       {"run --substeps -3", "--substeps: -3 is out of range"},
       {"-updateNum -3 -f", "--substeps: -3 is out of range"},
-      {"run --frames=abc", "error: Could not convert: --frames = abc"},
+      {"run --frames=abc", "error: command line: --frames: abc is not a whole number (allowed: integer [0, 1000000])"},
+      {"run --frames 1.5", "error: command line: --frames: 1.5 is not a whole number"},
+      {"--threads 2000 run", "error: command line: --threads: 2000 is out of range (allowed: integer [0, 1024])"},
+      {"run --stop-recording-at -2", "error: command line: --stop-recording-at: -2 is out of range (allowed: integer >= -1)"},
+      {"run --integrator rk4",
+       "error: command line: --integrator: rk4 is not one of the choices (allowed: explicit-euler, symplectic-euler, "
+       "velocity-verlet)"},
   };
   for (const Case& c : cases) {
     const std::string args = std::string(c.args) + " " + quote(scene);
@@ -131,7 +137,7 @@ TEST(Cli, SpeedLimitMustBeAFiniteNumber) {
   for (const std::string bad : {"nan", "-nan", "NaN", "inf", "-1", "1e7"}) {
     const RunResult r = runSoftsub("run --frames 1 --speed-limit " + bad + " " + quote(scene), tmp.path());
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
-    EXPECT_NE(r.err.find("error: --speed-limit: " + bad + " is "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("error: command line: --speed-limit: " + bad + " is "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("(allowed: 0 to 1e6)"), std::string::npos) << r.err;
     EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"}) << bad;
   }
@@ -160,7 +166,8 @@ TEST(Cli, AParticleCapBelowOneSaysWhatIsAllowed) {
   for (const std::string command : {"run", "render --out r", "view"}) {
     const RunResult r = runSoftsub(command + " --max-particles 0 " + quote(scene), tmp.path());
     EXPECT_EQ(r.code, 2) << command;
-    EXPECT_NE(r.err.find("error: --max-particles: 0 is out of range (allowed: a whole number >= 1)"), std::string::npos)
+    EXPECT_NE(r.err.find("error: command line: --max-particles: 0 is out of range (allowed: a whole number >= 1)"),
+              std::string::npos)
         << command << ": " << r.err;
     EXPECT_LT(r.err.size(), 300u) << r.err;
   }
