@@ -724,6 +724,12 @@ void Simulation::checkFinite(const Extremes* scanned) const {
 // Only on the way out: a serial scan that names the body, or the particle with the
 // lowest id, that failed the check.
 void Simulation::reportBlowUp() const {
+  // What shortens the substep: with --adaptive on, its floor (Substeps) or its ceiling.
+  const std::string shorter = model_.adaptiveSubsteps
+                                  ? fmt::format("raise Substeps (the fewest --adaptive uses) or --max-substeps "
+                                                "(now {})",
+                                                model_.maxSubsteps)
+                                  : std::string("raise Substeps or use --adaptive");
   const std::string when =
       substepInFrame_ > 0
           ? fmt::format("frame {}, substep {} of {}", state_.frame + 1, substepInFrame_, substeps_)
@@ -738,8 +744,8 @@ void Simulation::reportBlowUp() const {
     if (what == nullptr) continue;
     throw BlowUpError(fmt::format(
         "simulation blew up at {}: object '{}': its {} is not finite (forces too stiff for the time step: "
-        "raise Substeps or use --adaptive, lower the FluidObject function or check Mass)",
-        when, model_.bodies.bodies[b].name, what));
+        "{}, lower the FluidObject function or check Mass)",
+        when, model_.bodies.bodies[b].name, what, shorter));
   }
   const ParticleStore& s = state_.particles;
   const double limit = model_.maxTravelPerSubstep * model_.framesPerSecond * substeps_;
@@ -747,11 +753,13 @@ void Simulation::reportBlowUp() const {
   const std::vector<float>* arrays[6] = {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz};
   std::size_t worst = s.size();
   std::string problem;
+  bool tooFast = false;  // finite, beyond the speed limit
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (worst < s.size() && s.id[i] > s.id[worst]) continue;
     std::string p;
     for (int a = 0; a < 6 && p.empty(); ++a)
       if (!std::isfinite((*arrays[a])[i])) p = fmt::format("{} is {}", names[a], (*arrays[a])[i]);
+    const bool finite = p.empty();
     if (p.empty() && limit > 0) {
       // The check's own arithmetic (scanParticles), so the particle it flagged is found.
       const float inv = invReach_[s.material[i]];
@@ -765,12 +773,19 @@ void Simulation::reportBlowUp() const {
     if (p.empty()) continue;
     worst = i;
     problem = std::move(p);
+    tooFast = finite;
   }
   if (worst == s.size()) throw BlowUpError(fmt::format("simulation blew up at {}", when));
-  throw BlowUpError(fmt::format(
-      "simulation blew up at {}: {}, particle id {}: {} (forces too stiff for the time step: raise Substeps or "
-      "use --adaptive, lower MaximumForce or Viscosity)",
-      when, entityName(s.owner[worst]), s.id[worst], problem));
+  // A speed beyond the limit is not always the forces: a long fall with nothing below
+  // gets there under gravity alone.
+  const std::string advice =
+      tooFast ? fmt::format("faster than the time step allows: {}; if the speed is real, as in a long fall with "
+                            "no container below, raise --speed-limit or set it to 0; if the forces cause it, "
+                            "lower MaximumForce or Viscosity",
+                            shorter)
+              : fmt::format("forces too stiff for the time step: {}, lower MaximumForce or Viscosity", shorter);
+  throw BlowUpError(fmt::format("simulation blew up at {}: {}, particle id {}: {} ({})", when,
+                                entityName(s.owner[worst]), s.id[worst], problem, advice));
 }
 
 // Each fluid's particles in id order: its ids are consecutive from firstId, so a pass over

@@ -316,6 +316,15 @@ TEST(Simulation, BlowUpIsReportedWithFrameFluidAndParticle) {
   EXPECT_NE(msg.find("frame 1"), std::string::npos) << msg;
   EXPECT_NE(msg.find("particle id " + std::to_string(id)), std::string::npos) << msg;
   EXPECT_NE(msg.find("is nan"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("forces too stiff for the time step: raise Substeps or use --adaptive"), std::string::npos)
+      << msg;
+  // With adaptive substeps on, the remedy does not suggest turning them on.
+  m.adaptiveSubsteps = true;
+  m.maxSubsteps = 40;
+  Simulation adaptive(m, s);
+  const std::string a = blowUpMessage(adaptive);
+  EXPECT_EQ(a.find("use --adaptive"), std::string::npos) << a;
+  EXPECT_NE(a.find("--max-substeps (now 40)"), std::string::npos) << a;
 }
 
 TEST(Simulation, EverySubstepIsCheckedAndTheLowestBadIdIsNamed) {
@@ -332,6 +341,9 @@ TEST(Simulation, EverySubstepIsCheckedAndTheLowestBadIdIsNamed) {
   EXPECT_NE(msg.find("particle id " + std::to_string(lowest) + ":"), std::string::npos) << msg;
   EXPECT_NE(msg.find("speed is"), std::string::npos) << msg;
   EXPECT_NE(msg.find("fluid '"), std::string::npos) << msg;
+  // A finite speed may be real (a long fall): the remedy says so, not only "too stiff".
+  EXPECT_NE(msg.find("faster than the time step allows"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--speed-limit"), std::string::npos) << msg;
   EXPECT_EQ(sim.state().frame, 0) << "the frame was not completed";
 }
 
