@@ -29,7 +29,7 @@ int infoCommand(const InfoOptions& o) {
   std::string ext = std::filesystem::path(o.file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".scene") {
+  if (ext == ".scene" || ext == ".xml") {  // `run` takes a scene under any name; .xml is common
     printSceneInfo(o.file);
   } else if (ext == ".sim") {
     printSimInfo(o.file);
@@ -45,7 +45,7 @@ int infoCommand(const InfoOptions& o) {
     throw InputError({o.file, 0, {}},
                      ext.empty() ? std::string("no file extension")
                                  : "unknown file extension '" + ext + "'",
-                     ".scene, .sim, .pdc, .ply, .manifest, .state, or a folder");
+                     ".scene (or .xml), .sim, .pdc, .ply, .manifest, .state, or a folder");
   }
   return static_cast<int>(ExitCode::Ok);
 }

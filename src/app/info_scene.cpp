@@ -22,8 +22,12 @@ std::string describeFields(const S& s, std::initializer_list<std::string_view> s
   for (const auto& f : scene::fieldsOf<S>()) {
     if (f.kind == scene::Kind::PointList) continue;
     if (std::find(skip.begin(), skip.end(), f.tag) != skip.end()) continue;
+    // An empty list (an object's Size when a mesh or its Geometry gives the shape) is
+    // not shown: "Size ," read as a value left out.
+    const std::string value = scene::formatValue(f, f.get(s));
+    if (value.empty()) continue;
     if (!out.empty()) out += ", ";
-    out += fmt::format("{} {}", f.tag, scene::formatValue(f, f.get(s)));
+    out += fmt::format("{} {}", f.tag, value);
   }
   return out;
 }

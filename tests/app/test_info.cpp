@@ -111,7 +111,17 @@ TEST(Info, UnknownExtensionIsBadInput) {
   EXPECT_EQ(r.code, 2);
   expectContains(r.err, "error: notes.txt");
   expectContains(r.err, "unknown file extension '.txt'");
-  expectContains(r.err, ".scene, .sim, .pdc, .ply");
+  expectContains(r.err, ".scene (or .xml), .sim, .pdc, .ply");
+}
+
+// `run` takes a scene under any name; `info` reads a scene named .xml too (it refused it).
+TEST(Info, ASceneNamedXmlIsAScene) {
+  TempDir tmp;
+  fs::copy_file(examplesDir() / "two-fluids.scene", tmp / "shot.XML");
+  const RunResult r = runSoftsub("info shot.XML", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectContains(r.out, "scene shot:");
+  expectContains(r.out, "fluids: 2");
 }
 
 TEST(Info, MissingOrBrokenFiles) {
