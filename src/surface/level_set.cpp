@@ -47,6 +47,10 @@ struct LevelSet::Impl {
     std::vector<openvdb::Vec3I> tris;
     std::vector<openvdb::Vec4I> quads;
   };
+  /// Takes polygons already made at `iso` (fromParticles' volume check) as the surface's.
+  void adoptPolygons(Polygons&& p) {
+    std::call_once(polygonsOnce, [&] { polys = std::move(p); });
+  }
   const Polygons& polygons() const {
     std::call_once(polygonsOnce, [this] {
       const openvdb::FloatGrid& g = field ? *field : *grid;
@@ -329,6 +333,65 @@ float volumeThreshold(const openvdb::FloatGrid& field, const std::vector<Leaf*>&
   return 0.5f * (lo + hi);
 }
 
+// Meshes `field` at iso value -t into `p` (as Impl::polygons does) and returns the volume
+// the mesh encloses, in world units: the signed tetrahedra from the origin, summed in the
+// polygons' order (the same for any thread count).
+double meshedVolume(const openvdb::FloatGrid& field, float t, LevelSet::Impl::Polygons& p) {
+  p.points.clear();
+  p.tris.clear();
+  p.quads.clear();
+  openvdb::tools::volumeToMesh(field, p.points, p.tris, p.quads, static_cast<double>(-t), 0.0);
+  const auto at = [&](unsigned i) {
+    const openvdb::Vec3s& v = p.points[i];
+    return openvdb::Vec3d(v[0], v[1], v[2]);
+  };
+  double v = 0.0;
+  const auto add = [&](unsigned a, unsigned b, unsigned c) { v += at(a).dot(at(b).cross(at(c))); };
+  for (const auto& tri : p.tris) add(tri[0], tri[1], tri[2]);
+  for (const auto& q : p.quads) {
+    add(q[0], q[1], q[2]);
+    add(q[0], q[2], q[3]);
+  }
+  return std::abs(v) / 6.0;
+}
+
+// The volume rule's iso value checked against the mesh it gives. volumeThreshold counts
+// voxels; a blob only a few voxels across (a lone drop at the default voxel of half a
+// particle) meshes far smaller than its voxels' count (a lone particle: 30% of its rest
+// volume). When the mesh at t is off by more than kMeshVolumeTolerance, a secant search on
+// the meshed volume (decreasing in t) moves t, at most kMeshVolumeSteps more meshings,
+// keeping the best. `p` holds the polygons at the returned value.
+constexpr double kMeshVolumeTolerance = 0.02;
+constexpr int kMeshVolumeSteps = 6;
+float meshVolumeThreshold(const openvdb::FloatGrid& field, float t, float peak, double want,
+                          LevelSet::Impl::Polygons& p) {
+  double v = meshedVolume(field, t, p);
+  if (!(want > 0.0) || std::abs(v - want) <= kMeshVolumeTolerance * want) return t;
+  const float tMin = 1e-3f, tMax = 0.999f * peak;
+  LevelSet::Impl::Polygons trial;
+  float best = t, ta = t;
+  double bestError = std::abs(v - want), va = v;
+  float tb = std::clamp(v < want ? 0.7f * t : 1.3f * t, tMin, tMax);
+  for (int step = 0; step < kMeshVolumeSteps && tb != ta; ++step) {
+    const double vb = meshedVolume(field, tb, trial);
+    if (std::abs(vb - want) < bestError) {
+      bestError = std::abs(vb - want);
+      best = tb;
+      std::swap(p, trial);
+    }
+    if (bestError <= kMeshVolumeTolerance * want) break;
+    // Secant step; where the volume did not change (both ends empty or saturated), a
+    // plain step in the needed direction.
+    float next = vb != va ? tb + static_cast<float>((want - vb) * double(tb - ta) / (vb - va))
+                          : (vb < want ? 0.7f * tb : 1.3f * tb);
+    if (!std::isfinite(next)) next = vb < want ? 0.7f * tb : 1.3f * tb;
+    ta = tb;
+    va = vb;
+    tb = std::clamp(next, tMin, tMax);
+  }
+  return best;
+}
+
 }  // namespace
 
 LevelSet::LevelSet() : impl_(std::make_shared<const Impl>()) {}
@@ -399,21 +462,25 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
     }
     leaves = fillLeaves(*field, keys, q, radiusVoxels, peak);
   }
-  if (s.preserveVolume) {
-    // The iso value that encloses the rest volume (no meshing involved).
-    const double perParticle =
-        s.restVolumePerParticle > 0.0 ? s.restVolumePerParticle : particleSize * particleSize * particleSize;
-    threshold = volumeThreshold(*field, leaves, peak, double(used) * perParticle / (vx * vx * vx));
-  }
-  // The field holds minus the sums, so its surface is at minus the threshold; everything
-  // never touched is the background 0, outside.
-  impl->iso = -threshold;
-
   // The blobby field is not a distance: the narrow-band signed-distance level set that
   // other tools expect in a .vdb is rebuilt from it when first asked for (Impl::sdf).
   // Classed as a level set (negative inside) so that volumeToMesh winds its polygons as it
   // does for the SDF (it reverses them for level sets).
   field->setGridClass(openvdb::GRID_LEVEL_SET);
+  if (s.preserveVolume) {
+    // The iso value that encloses the rest volume by the voxels' count, then checked
+    // against the mesh it gives (whose polygons become the surface's).
+    const double perParticle =
+        s.restVolumePerParticle > 0.0 ? s.restVolumePerParticle : particleSize * particleSize * particleSize;
+    threshold = volumeThreshold(*field, leaves, peak, double(used) * perParticle / (vx * vx * vx));
+    Impl::Polygons polygons;
+    threshold = meshVolumeThreshold(*field, threshold, peak, double(used) * perParticle, polygons);
+    impl->adoptPolygons(std::move(polygons));
+  }
+  // The field holds minus the sums, so its surface is at minus the threshold; everything
+  // never touched is the background 0, outside.
+  impl->iso = -threshold;
+
   impl->halfBand = static_cast<float>(s.halfBandVoxels);
   impl->field = std::move(field);
   return LevelSet(std::move(impl));
