@@ -227,6 +227,10 @@ int renderCommand(const RenderOptions& o) {
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
+    const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);
+    if (range.last && *range.last > lastRecorded && chatty)
+      fmt::print(stderr, "note: --frames reaches frame {}; the recording ends at frame {}, the last drawn\n",
+                 *range.last, lastRecorded);
     prepareOutputs();
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
     observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceSettings);
@@ -252,6 +256,9 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("frame {} is past the scene's last frame {}", range.first,
                                    loaded.desc.simulation.frames),
                        fmt::format("frames in [0, {}]", loaded.desc.simulation.frames));
+    if (range.last && *range.last > loaded.desc.simulation.frames && chatty)
+      fmt::print(stderr, "note: --frames reaches frame {}; the scene ends at frame {}, the last drawn\n", *range.last,
+                 loaded.desc.simulation.frames);
     scene::Compiled compiled = scene::compile(loaded.desc);
     if (chatty)
       for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);

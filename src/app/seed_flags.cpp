@@ -54,6 +54,10 @@ std::vector<std::string> rewriteSeedFlags(std::span<const std::string> args) {
       continue;
     }
     if (arg == "-f" || (arg.starts_with("-f") && !arg.starts_with("--"))) sawSeedFlag = true;
+    if (arg.starts_with("-f=")) {  // CLI11 would take "=FILE" for the file name
+      out.push_back("--scene=" + arg.substr(3));
+      continue;
+    }
     const auto seed = matchSeed(arg);
     if (!seed) {
       out.push_back(arg);

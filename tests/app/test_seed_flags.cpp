@@ -22,6 +22,12 @@ TEST(SeedFlags, MapsToLongOptionsAndImpliesRun) {
                   "--draw-per-frame=1"}));
 }
 
+// "-f=FILE" was read as the file "=FILE" ("cannot read scene file '=/path/x.scene'").
+TEST(SeedFlags, FWithAnEqualsSignNamesTheScene) {
+  EXPECT_EQ(rewrite({"-f=/path/x.scene"}), (Args{"run", "--scene=/path/x.scene"}));
+  EXPECT_EQ(rewrite({"view", "-f=a.scene"}), (Args{"view", "--scene=a.scene"}));
+}
+
 TEST(SeedFlags, JoinsNegativeValues) {
   EXPECT_EQ(rewrite({"-f", "a.scene", "-stopRecordingAt", "-1"}),
             (Args{"run", "-f", "a.scene", "--stop-recording-at=-1"}));
