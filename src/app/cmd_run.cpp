@@ -18,6 +18,7 @@
 #include "cache/naming.h"
 #include "core/error.h"
 #include "number_checks.h"
+#include "solver/stability.h"
 #include "progress.h"
 #include "run_journal.h"
 #include "scene/compile.h"
@@ -242,6 +243,22 @@ int runCommand(const RunOptions& o) {
   std::optional<render::RenderScene> view;
   if (o.preview) view = renderSceneOf(loaded.desc, compiled.objectMeshes);
   const std::size_t particles = compiled.model.particleCount();
+  // The viewer's stability hint, as a warning: a scene the estimate calls Unstable at its
+  // substeps may blow up, or (below the blow-up check's limits) fling its particles and
+  // gain energy without stopping. --adaptive takes the estimate's count itself.
+  std::optional<std::string> unstable;
+  if (!o.adaptive) {
+    const solver::StabilityReport s = solver::assessStability(compiled.model, &compiled.state);
+    if (s.verdict == solver::StabilityVerdict::Unstable && s.worst < s.pairs.size()) {
+      const solver::PairStability& p = s.pairs[s.worst];
+      unstable = fmt::format(
+          "the stability estimate calls {} / {} unstable at {} substeps a frame: expect a blow-up, or particles "
+          "flung about and energy gained; {}",
+          p.first, p.second, s.substeps,
+          s.minimumSubsteps > 0 ? fmt::format("raise Substeps to {} or use --adaptive", s.minimumSubsteps)
+                                : std::string("soften the interaction (no substep count up to 10,000 is stable)"));
+    }
+  }
   solver::Simulation sim(compiled.model, std::move(compiled.state));
   const std::uint64_t fingerprint = runFingerprint(o, loaded.desc, formats, sim, meshes);
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
@@ -254,6 +271,7 @@ int runCommand(const RunOptions& o) {
   if (chatty) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", sceneFile, w);
+    if (unstable) fmt::print(stderr, "warning: {}: {}\n", sceneFile, *unstable);
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");

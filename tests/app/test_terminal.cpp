@@ -3,6 +3,7 @@
 // run softsub with its output in files, where it prints nothing but errors.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <string>
 
 #include "app_test_util.h"
@@ -34,6 +35,34 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
   EXPECT_NE(t.find(" ms/frame), output: " + (tmp / "o").string() + "/\r\n", done), std::string::npos) << t;
   EXPECT_NE(t.find("note: -drawPerFrame applies to the viewer"), std::string::npos) << t;
   EXPECT_EQ(listFrameFiles(tmp / "o").size(), 4u);
+}
+
+// The viewer's stability hint as a warning (a scene that would gain energy without ever
+// tripping the blow-up check ran silently): the example's jelly at ten times its
+// viscosity is called unstable at its 24 substeps; the example itself, and --adaptive
+// (which takes the estimate's count), get no warning.
+TEST(Terminal, RunWarnsWhenTheStabilityEstimateCallsTheSceneUnstable) {
+  TempDir tmp;
+  std::string text = readFile(examplesDir() / "jelly-block.scene");
+  const std::string viscosity = "<Viscosity>15</Viscosity>";
+  ASSERT_NE(text.find(viscosity), std::string::npos);
+  text.replace(text.find(viscosity), viscosity.size(), "<Viscosity>150</Viscosity>");
+  {
+    std::ofstream(tmp / "stiff.scene") << text;
+  }
+  const RunResult stiff = runSoftsubInTerminal("run --frames 0 --formats none stiff.scene", tmp.path());
+  ASSERT_EQ(stiff.code, 0) << stiff.out;
+  EXPECT_NE(stiff.out.find("warning: stiff.scene: the stability estimate calls jelly / jelly unstable at 24 substeps "
+                           "a frame"),
+            std::string::npos)
+      << stiff.out;
+  EXPECT_NE(stiff.out.find("raise Substeps to "), std::string::npos) << stiff.out;
+  const RunResult adaptive =
+      runSoftsubInTerminal("run --frames 0 --formats none --adaptive stiff.scene", tmp.path());
+  EXPECT_EQ(adaptive.out.find("stability estimate"), std::string::npos) << adaptive.out;
+  const RunResult example = runSoftsubInTerminal(
+      "run --frames 0 --formats none " + quote(examplesDir() / "jelly-block.scene"), tmp.path());
+  EXPECT_EQ(example.out.find("stability estimate"), std::string::npos) << example.out;
 }
 
 TEST(Terminal, QuietPrintsNothingEvenAtATerminal) {
