@@ -237,11 +237,11 @@ CLI::App* addBenchCommand(CLI::App& root, BenchOptions& o) {
                 "run by softsub and by LAMMPS: atom-steps per second, ratio, total energy after the run");
   lammps->add_option("--particles", o.particles, "Atom counts (rounded to 4 n^3)")->delimiter(',')->capture_default_str();
   lammps->add_option("--cutoff", o.cutoffs, "Cutoffs in sigma")->delimiter(',')->capture_default_str();
-  lammps->add_option("--steps", o.steps, "Steps of 0.005 tau")->check(wholeNumberIn(1, 100000))->capture_default_str();
+  lammps->add_option("--steps", o.steps, "Steps of 0.005 tau")->transform(wholeNumberIn(1, 100000))->capture_default_str();
   lammps->add_option("--repeat", o.repeat,
                      "Runs of each code per row, alternating ours and LAMMPS's; the best of each is printed, so "
                      "a busy moment on a shared machine costs neither side")
-      ->check(wholeNumberIn(1, 100))
+      ->transform(wholeNumberIn(1, 100))
       ->capture_default_str();
   lammps->add_option("--lammps", o.lammps, "LAMMPS binary (default: lmp on PATH)");
   lammps->add_option("--keep", o.keep, "Keep the scenes, data files, inputs and logs in this folder");

@@ -33,7 +33,7 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
                   "Name of the fluid in the snippet or the PLY: letters, digits, _ and -, at most 100 characters, "
                   "as in a scene (default: filled)");
   cmd->add_option("--max-particles", o.maxParticles, "Refuse fills larger than this (default: 20,000,000)")
-      ->check(particleCap());
+      ->transform(particleCap());
   cmd->add_flag("-q,--quiet", o.quiet,
                 "No summary on stderr, even on a terminal (errors and warnings are still printed)");
   return cmd;

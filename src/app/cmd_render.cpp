@@ -168,14 +168,18 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
                 "off-screen (no display or GPU needed)");
   cmd->add_option("INPUT", o.input, ".scene file or recorded <scene>Sim folder (default: the embedded default scene)");
   cmd->add_option("--out", o.out, "Folder for the pictures <scene>.NNNN.png")->required();
-  cmd->add_option("--width", o.width, "Picture width in pixels, 16 to 16384")->capture_default_str();
-  cmd->add_option("--height", o.height, "Picture height in pixels, 16 to 16384")->capture_default_str();
+  cmd->add_option("--width", o.width, "Picture width in pixels, 16 to 16384")
+      ->transform(wholeNumberIn(16, 16384))
+      ->capture_default_str();
+  cmd->add_option("--height", o.height, "Picture height in pixels, 16 to 16384")
+      ->transform(wholeNumberIn(16, 16384))
+      ->capture_default_str();
   cmd->add_option("--frames", o.frames, "Frames to draw: a:b (inclusive), a:, :b or a (default: all)");
   cmd->add_option("--movie", o.movie, "Also encode the pictures into this MP4 file (needs ffmpeg)");
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps> (1 to 10000, as in a scene)")
-      ->check(wholeNumberIn(1, 10000));
+      ->transform(wholeNumberIn(1, 10000));
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")
-      ->check(particleCap());
+      ->transform(particleCap());
   cmd->add_flag("--surface", o.surface,
                 "Draw each fluid's surface (as softsub mesh makes it) instead of its particles");
   addSurfaceOptions(cmd, o.surfaceSettings, "; with --surface");

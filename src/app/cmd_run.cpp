@@ -157,10 +157,10 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
       "run", "Simulate a scene into frame caches (the embedded default scene when SCENE is omitted)");
   run->add_option("SCENE,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)");
   run->add_option("--frames", o.frames, "Frames to simulate (overrides <Simulation><Frames>)")
-      ->check(wholeNumberIn(0, 1000000));
+      ->transform(wholeNumberIn(0, 1000000));
   run->add_option("--substeps", o.substeps,
                   "Updates per frame (overrides <Simulation><Substeps>; seed: -updateNum N)")
-      ->check(wholeNumberIn(1, 10000));
+      ->transform(wholeNumberIn(1, 10000));
   run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
   run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply,mesh,vdb (any of them), all (sim,pdc,ply) or none; mesh and vdb are fluid surfaces (slow)")
       ->capture_default_str();
@@ -174,13 +174,13 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                 "to resume; needs an output format (not --formats none)");
   run->add_option("--checkpoint-every", o.checkpointEvery,
                   "Write the solver state every K frames for --resume (the two newest are kept); 0: never")
-      ->check(wholeNumberIn(0, 1000000))
+      ->transform(wholeNumberIn(0, 1000000))
       ->capture_default_str();
   run->add_flag("--adaptive", o.adaptive,
                 "Choose each frame's substeps from the fastest particle, the strongest force and the stability "
                 "estimate (at least the scene's Substeps)");
   run->add_option("--max-substeps", o.maxSubsteps, "The most substeps --adaptive may choose for a frame")
-      ->check(wholeNumberIn(1, 10000))
+      ->transform(wholeNumberIn(1, 10000))
       ->capture_default_str();
   run->add_option("--speed-limit", o.speedLimit,
                   "Blow-up check: the most interaction distances a particle may cover in one substep; 0: no "
@@ -193,18 +193,18 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                 "Print nothing but errors (and a warning when a --preview picture cannot be drawn)");
   run->add_option("--max-particles", o.maxParticles,
                   "Refuse scenes with more particles than this (default: the reader's limit)")
-      ->check(particleCap());
+      ->transform(particleCap());
   run->add_flag("--print-scene", o.printScene,
                 "Print the scene's text (SCENE's, or the embedded default scene's without it) and exit");
   run->add_flag("--preview", o.preview,
                 "Also draw the last frame into <out>/<scene>.preview.png (off-screen, no display needed; "
                 "also with --formats none)");
   run->add_option("--record", o.record, "0: write no caches (same as --formats none); 1: write")
-      ->check(wholeNumberIn(0, 1))
+      ->transform(wholeNumberIn(0, 1))
       ->group(kSeedGroup);
   run->add_option("--stop-recording-at", o.stopRecordingAt,
                   "Last frame to write; the run ends there too (-1: no limit)")
-      ->check(wholeNumberIn(-1, std::numeric_limits<std::int64_t>::max()))
+      ->transform(wholeNumberIn(-1, std::numeric_limits<std::int64_t>::max()))
       ->group(kSeedGroup);
   run->add_option("--draw-per-frame", o.drawPerFrame, "Accepted for the viewer; ignored by run")
       ->group(kSeedGroup);

@@ -19,27 +19,27 @@ CLI::App* addViewCommand(CLI::App& root, ViewOptions& o) {
                   ".scene file or recorded folder (default: the embedded default scene; seed: -f FILE)");
   cmd->add_option("--substeps", o.substeps,
                   "Overrides <Simulation><Substeps> (a scene only; seed: -updateNum N)")
-      ->check(wholeNumberIn(1, 10000));
+      ->transform(wholeNumberIn(1, 10000));
   cmd->add_option("--out", o.out, "Where S writes the recorded frames (default: <sceneDir>/<sceneName>Sim)");
   cmd->add_option("--script", o.script,
                   "Scripted input, one command a line: set fluid NAME TAG VALUE, set simulation TAG VALUE, "
                   "key K, frames N, wait N, save FILE.scene, screenshot FILE.png, quit (docs/cli.md)");
-  cmd->add_option("--width", o.width, "Window width")->check(wholeNumberIn(200, 16384))->capture_default_str();
-  cmd->add_option("--height", o.height, "Window height")->check(wholeNumberIn(150, 16384))->capture_default_str();
+  cmd->add_option("--width", o.width, "Window width")->transform(wholeNumberIn(200, 16384))->capture_default_str();
+  cmd->add_option("--height", o.height, "Window height")->transform(wholeNumberIn(150, 16384))->capture_default_str();
   cmd->add_flag("--paused", o.paused, "Start paused (Space plays, N steps)");
   cmd->add_option("--max-particles", o.maxParticles,
                   "Refuse scenes with more particles than this (a scene only; default: the reader's limit)")
-      ->check(particleCap());
+      ->transform(particleCap());
   cmd->add_option("--record", o.record, "1: keep every frame in memory so S can write them; 0: do not")
-      ->check(wholeNumberIn(0, 1))
+      ->transform(wholeNumberIn(0, 1))
       ->capture_default_str()
       ->group(kSeedGroup);
   cmd->add_option("--stop-recording-at", o.stopRecordingAt, "Last frame kept for S (-1: no limit)")
-      ->check(wholeNumberIn(-1, std::numeric_limits<std::int64_t>::max()))
+      ->transform(wholeNumberIn(-1, std::numeric_limits<std::int64_t>::max()))
       ->capture_default_str()
       ->group(kSeedGroup);
   cmd->add_option("--draw-per-frame", o.drawPerFrame, "1: draw every frame; 0: draw every substep")
-      ->check(wholeNumberIn(0, 1))
+      ->transform(wholeNumberIn(0, 1))
       ->capture_default_str()
       ->group(kSeedGroup);
   return cmd;

@@ -60,7 +60,7 @@ int runApp(int argc, char** argv) {
   root.add_option("--threads", threads,
                   "Threads for the simulation, surfaces and pictures, 1 to 1024 (default 0: all cores); "
                   "results are bitwise the same for any count")
-      ->check(softsub::app::wholeNumberIn(0, 1024));
+      ->transform(softsub::app::wholeNumberIn(0, 1024));
   for (CLI::App* sub : {run, info, fill, schema, render, view, mesh, bench}) sub->fallthrough();
   for (CLI::App* sub : bench->get_subcommands({})) sub->fallthrough();
   // After the subcommands: CLI11 copies the parent's footer into a subcommand when it is

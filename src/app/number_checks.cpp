@@ -27,8 +27,9 @@ CLI::Validator finiteNonNegative() {
   return finiteNumberIn(0.0, std::numeric_limits<double>::max(), "a finite number >= 0");
 }
 
-CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most) {
-  const std::string allowed = most == std::numeric_limits<std::int64_t>::max()
+CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most, std::string allowedText) {
+  const std::string allowed = !allowedText.empty() ? std::move(allowedText)
+                              : most == std::numeric_limits<std::int64_t>::max()
                                   ? fmt::format("integer >= {}", least)
                                   : fmt::format("integer [{}, {}]", least, most);
   return CLI::Validator(
@@ -42,6 +43,10 @@ CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most) {
         if (ec != std::errc() || ptr != end || first == end)
           return fmt::format("{} is not a whole number (allowed: {})", text, allowed);
         if (v < least || v > most) return fmt::format("{} is out of range (allowed: {})", text, allowed);
+        // Plain decimal for CLI11's own conversion, which reads a leading 0 as octal
+        // ("0048" would be refused, "0012" taken as 10). Kept because the option
+        // applies this validator with ->transform, not ->check.
+        text = std::to_string(v);
         return {};
       },
       allowed);
@@ -59,6 +64,8 @@ CLI::Validator oneOf(std::vector<std::string> names) {
       "one of " + allowed);
 }
 
-CLI::Validator particleCap() { return finiteNumberIn(1.0, 1.8e19, "a whole number >= 1"); }
+CLI::Validator particleCap() {
+  return wholeNumberIn(1, std::numeric_limits<std::int64_t>::max(), "a whole number >= 1");
+}
 
 }  // namespace softsub::app

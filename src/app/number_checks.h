@@ -21,7 +21,10 @@ namespace softsub::app {
 /// words: "1.5 is not a whole number (allowed: integer [0, 1000000])", "2000 is out of
 /// range (allowed: integer [0, 1024])". CLI11's Range says "Value 2000 not in range 0 to
 /// 1024", and a value its conversion refuses "Could not convert: --frames = 1.5".
-[[nodiscard]] CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most);
+/// Apply it with ->transform (not ->check): it also rewrites the text as plain decimal
+/// ("0048" -> "48"), which CLI11 would otherwise read as octal. `allowedText` replaces
+/// the "integer [least, most]" wording.
+[[nodiscard]] CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most, std::string allowedText = {});
 
 /// One of `names`: "rk4 is not one of the choices (allowed: a, b, c)".
 [[nodiscard]] CLI::Validator oneOf(std::vector<std::string> names);

@@ -452,11 +452,13 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report, const fs::pa
   // faces and abort the process on one without indices (found by the fuzzer:
   // fuzz/regressions/mesh_loader/ply-empty-faces-abort).
   const auto cannotParse = [&] {
+    // A refusal is named first (it is the likely cause), with assimp's own words after it.
     if (confined != nullptr && !confined->refused().empty())
       return InputError({name, 0, "mesh"},
                         fmt::format("the mesh refers to '{}', outside the scene's folder '{}' (a scene reads "
-                                    "files only inside its folder)",
-                                    confined->refused().front(), confineTo.string()),
+                                    "files only inside its folder; assimp: {})",
+                                    confined->refused().front(), confineTo.string(),
+                                    importer.GetErrorString()[0] != '\0' ? importer.GetErrorString() : "no reason given"),
                         "meshes whose own references (a glTF's buffers and images, an OBJ's material "
                         "library) lie in the scene's folder too: a scene and its folder are moved as a "
                         "whole");

@@ -780,7 +780,7 @@ void Simulation::reportBlowUp() const {
   // gets there under gravity alone.
   const std::string advice =
       tooFast ? fmt::format("faster than the time step allows: {}; if the speed is real, as in a long fall with "
-                            "no container below, raise --speed-limit or set it to 0; if the forces cause it, "
+                            "no container below, raise run's --speed-limit or set it to 0; if the forces cause it, "
                             "lower MaximumForce or Viscosity",
                             shorter)
               : fmt::format("forces too stiff for the time step: {}, lower MaximumForce or Viscosity", shorter);

@@ -266,6 +266,7 @@ float volumeThreshold(const openvdb::FloatGrid& field, const std::vector<Leaf*>&
   }
   // Stay strictly between 0 (the blob radius: the field's support) and the peak.
   const float tMax = 0.999f * peak;
+  if (!(tMax > 1e-3f)) return 0.5f * peak;  // a field this weak (voxels far coarser than the blob): no range to search
   const float t0 = std::clamp(static_cast<float>(bin) / toBin, 1e-3f, tMax);
   const float w = 0.5f * t0;
 
@@ -348,9 +349,18 @@ double meshedVolume(const openvdb::FloatGrid& field, float t, LevelSet::Impl::Po
   double v = 0.0;
   const auto add = [&](unsigned a, unsigned b, unsigned c) { v += at(a).dot(at(b).cross(at(c))); };
   for (const auto& tri : p.tris) add(tri[0], tri[1], tri[2]);
+  // Quads split along the shorter diagonal, as LevelSet::mesh() writes them: on a blob a
+  // few voxels across the quads are far from flat, and the other split encloses another
+  // volume.
+  const auto dist2 = [&](unsigned a, unsigned b) { return (p.points[a] - p.points[b]).lengthSqr(); };
   for (const auto& q : p.quads) {
-    add(q[0], q[1], q[2]);
-    add(q[0], q[2], q[3]);
+    if (dist2(q[0], q[2]) <= dist2(q[1], q[3])) {
+      add(q[0], q[1], q[2]);
+      add(q[0], q[2], q[3]);
+    } else {
+      add(q[0], q[1], q[3]);
+      add(q[1], q[2], q[3]);
+    }
   }
   return std::abs(v) / 6.0;
 }
@@ -366,8 +376,8 @@ constexpr int kMeshVolumeSteps = 6;
 float meshVolumeThreshold(const openvdb::FloatGrid& field, float t, float peak, double want,
                           LevelSet::Impl::Polygons& p) {
   double v = meshedVolume(field, t, p);
-  if (!(want > 0.0) || std::abs(v - want) <= kMeshVolumeTolerance * want) return t;
   const float tMin = 1e-3f, tMax = 0.999f * peak;
+  if (!(want > 0.0) || std::abs(v - want) <= kMeshVolumeTolerance * want || !(tMax > tMin)) return t;
   LevelSet::Impl::Polygons trial;
   float best = t, ta = t;
   double bestError = std::abs(v - want), va = v;

@@ -33,9 +33,10 @@ struct SurfaceSettings {
   /// threshold, pick the iso value at which the field encloses the fluid's rest volume
   /// (particle count x restVolumePerParticle): a ranking of the voxels' field values,
   /// refined by a sub-voxel volume estimate near the surface, then checked against the
-  /// mesh itself and moved until it encloses that volume within 2% (blobs a few voxels
-  /// across mesh far smaller than their voxels' count). This removes the blobby
-  /// field's gain (+8% to +30% for balls of 10^3 to 10^2 particles, more as blobs merge);
+  /// mesh itself and moved towards enclosing that volume within 2%, at most six more
+  /// meshings (blobs a few voxels across mesh far smaller than their voxels' count). This
+  /// removes the blobby field's gain (+8% to +30% for balls of 10^3 to 10^2 particles,
+  /// more as blobs merge);
   /// it is one iso value for the whole fluid, not Desbrun's local control.
   bool preserveVolume = true;
   /// Rest volume of one particle; 0 (the default) means particleSize^3, the cell of a

@@ -129,6 +129,17 @@ TEST(Cli, NegativeAndOutOfRangeOverridesExitTwoAndWriteNothing) {
   }
 }
 
+// Whole numbers are decimal even with leading zeros (a padded frame number): CLI11 alone
+// read "010" as octal 8, and refused "0048".
+TEST(Cli, LeadingZerosAreDecimalNotOctal) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const RunResult r = runSoftsub("run --frames 010 --stop-recording-at 0009 --formats sim -q --out o " + quote(scene),
+                                 tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFrameFiles(tmp / "o").size(), 10U);  // frames 0..9
+}
+
 // --speed-limit nan once passed the range check (NaN fails every comparison) and turned
 // the blow-up check's speed test off without a word.
 TEST(Cli, SpeedLimitMustBeAFiniteNumber) {
