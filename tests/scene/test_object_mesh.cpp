@@ -4,10 +4,12 @@
 // particle cap. The rules that need no file are rows of reader_error_rows.h.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
 #include "core/error.h"
+#include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene/writer.h"
 #include "scene_test_util.h"
@@ -43,6 +45,25 @@ std::string objectScene(const std::string& geometry, const std::string& extra = 
          "<Geometry>" + geometry + "</Geometry>\n" + extra +
          "</Object>\n"
          "</Scene>\n";
+}
+
+// A body's particles sit centred in its shape: the lattice starts at the mesh's low
+// corner, and a 2-unit box at particle size 0.6 had its particles reach its low faces and
+// stop 0.2 short of its high ones (it rested 0.2 deep in the floor on three faces).
+TEST(ObjectMesh, BodyParticlesAreCentredInTheShapeWhateverTheParticleSize) {
+  for (const double size : {0.6, 0.5, 0.45}) {
+    const std::string text = "<Scene version=\"1\">\n<Object><Name>box</Name><Shape>box</Shape><Size>2 2 2</Size>"
+                             "<ParticleSize>" + std::to_string(size) + "</ParticleSize></Object>\n</Scene>\n";
+    const Compiled c = compile(readSceneText(text, "t.scene"));
+    const rigid::BodySet& b = c.model.bodies;
+    ASSERT_GT(b.particleCount(), 0U);
+    for (const std::vector<float>* axis : {&b.ox, &b.oy, &b.oz}) {
+      const auto [lo, hi] = std::minmax_element(axis->begin(), axis->end());
+      EXPECT_NEAR(*lo + *hi, 0.0, 1e-5) << size;        // centred on the box's centre of mass
+      EXPECT_LE(*hi + 0.5 * size, 1.0 + 0.5 * size) << size;  // within half a particle of the faces
+      EXPECT_GE(*hi + 0.5 * size, 1.0 - 0.5 * size) << size;
+    }
+  }
 }
 
 TEST(ObjectMesh, ClosedMeshIsAMeshShapedBodyAndRoundTrips) {
