@@ -35,6 +35,11 @@ Mat4 toEigen(const aiMatrix4x4& m) {
   return out;
 }
 
+/// "mesh 2 'Cube'" (the name when the file gives one), for messages about a vertex.
+std::string meshLabel(unsigned index, const aiMesh& mesh) {
+  return mesh.mName.length > 0 ? fmt::format("mesh {} '{}'", index, mesh.mName.C_Str()) : fmt::format("mesh {}", index);
+}
+
 /// Hash of a position's exact bit pattern (after folding -0 onto +0), for welding.
 struct PositionHash {
   std::size_t operator()(const std::array<double, 3>& p) const {
@@ -62,8 +67,7 @@ class MeshBuilder {
       if (!raw.allFinite() || !v.allFinite())
         throw InputError(
             {file_, 0, "mesh"},
-            fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {}){}", i, meshIndex,
-                        mesh.mName.length > 0 ? fmt::format(" '{}'", mesh.mName.C_Str()) : "", raw.x(),
+            fmt::format("vertex {} of {} is not finite ({}, {}, {}){}", i, meshLabel(meshIndex, mesh), raw.x(),
                         raw.y(), raw.z(), raw.allFinite() ? " after its node's transform" : ""),
             "finite coordinates");
       local[i] = weld(v);
@@ -366,8 +370,7 @@ void checkFaces(const aiScene& scene, const std::string& name) {
       const aiVector3D& p = mesh->mVertices[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         throw InputError({name, 0, "mesh"},
-                         fmt::format("vertex {} of mesh {}{} is not finite ({}, {}, {})", i, m,
-                                     mesh->mName.length > 0 ? fmt::format(" '{}'", mesh->mName.C_Str()) : "", p.x,
+                         fmt::format("vertex {} of {} is not finite ({}, {}, {})", i, meshLabel(m, *mesh), p.x,
                                      p.y, p.z),
                          "finite coordinates");
     }

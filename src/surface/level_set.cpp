@@ -12,6 +12,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -334,6 +335,17 @@ float volumeThreshold(const openvdb::FloatGrid& field, const std::vector<Leaf*>&
   return 0.5f * (lo + hi);
 }
 
+// A quad of volumeToMesh's as two triangles, split along its shorter diagonal (better-
+// shaped triangles), in OpenVDB's winding. LevelSet::mesh() writes this split and the
+// volume check measures it: on a blob a few voxels across the quads are far from flat,
+// and the other split encloses another volume.
+std::array<openvdb::Vec3I, 2> quadTriangles(const std::vector<openvdb::Vec3s>& points, const openvdb::Vec4I& q) {
+  const auto dist2 = [&](unsigned a, unsigned b) { return (points[a] - points[b]).lengthSqr(); };
+  if (dist2(q[0], q[2]) <= dist2(q[1], q[3]))
+    return {openvdb::Vec3I(q[0], q[1], q[2]), openvdb::Vec3I(q[0], q[2], q[3])};
+  return {openvdb::Vec3I(q[0], q[1], q[3]), openvdb::Vec3I(q[1], q[2], q[3])};
+}
+
 // Meshes `field` at iso value -t into `p` (as Impl::polygons does) and returns the volume
 // the mesh encloses, in world units: the signed tetrahedra from the origin, summed in the
 // polygons' order (the same for any thread count).
@@ -349,19 +361,8 @@ double meshedVolume(const openvdb::FloatGrid& field, float t, LevelSet::Impl::Po
   double v = 0.0;
   const auto add = [&](unsigned a, unsigned b, unsigned c) { v += at(a).dot(at(b).cross(at(c))); };
   for (const auto& tri : p.tris) add(tri[0], tri[1], tri[2]);
-  // Quads split along the shorter diagonal, as LevelSet::mesh() writes them: on a blob a
-  // few voxels across the quads are far from flat, and the other split encloses another
-  // volume.
-  const auto dist2 = [&](unsigned a, unsigned b) { return (p.points[a] - p.points[b]).lengthSqr(); };
-  for (const auto& q : p.quads) {
-    if (dist2(q[0], q[2]) <= dist2(q[1], q[3])) {
-      add(q[0], q[1], q[2]);
-      add(q[0], q[2], q[3]);
-    } else {
-      add(q[0], q[1], q[3]);
-      add(q[1], q[2], q[3]);
-    }
-  }
+  for (const auto& q : p.quads)
+    for (const openvdb::Vec3I& tri : quadTriangles(p.points, q)) add(tri[0], tri[1], tri[2]);
   return std::abs(v) / 6.0;
 }
 
@@ -531,17 +532,8 @@ SurfaceMesh LevelSet::mesh() const {
   // them so that triangles are counter-clockwise and the enclosed volume is positive.
   out.triangles.reserve(tris.size() + 2 * quads.size());
   for (const auto& t : tris) out.triangles.push_back({t[2], t[1], t[0]});
-  const auto dist2 = [&](unsigned a, unsigned b) { return (points[a] - points[b]).lengthSqr(); };
-  for (const auto& q : quads) {
-    // Split along the shorter diagonal (better-shaped triangles).
-    if (dist2(q[0], q[2]) <= dist2(q[1], q[3])) {
-      out.triangles.push_back({q[2], q[1], q[0]});
-      out.triangles.push_back({q[3], q[2], q[0]});
-    } else {
-      out.triangles.push_back({q[3], q[1], q[0]});
-      out.triangles.push_back({q[3], q[2], q[1]});
-    }
-  }
+  for (const auto& q : quads)
+    for (const openvdb::Vec3I& t : quadTriangles(points, q)) out.triangles.push_back({t[2], t[1], t[0]});
 
   // Normals: the level set's gradient (central differences, half a voxel apart), one
   // vertex per index, in parallel (each task with its own cached accessor).
