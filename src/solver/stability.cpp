@@ -41,6 +41,138 @@ void sampleFunction(const forces::PairFunction& f, Visit&& visit) {
   }
 }
 
+/// Particles sampled for the most crowded neighbourhood (latticeDampingRate).
+constexpr std::size_t kCrowdSamples = 64;
+/// Particles of the patch whose damping operator is iterated, at most.
+constexpr std::size_t kPatchParticles = 3000;
+/// Lanczos steps on the patch.
+constexpr int kLanczosSteps = 60;
+
+/// Indices of the particles of material m.
+std::vector<std::uint32_t> particlesOf(const ParticleStore& s, std::uint16_t m) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i = 0; i < s.size(); ++i)
+    if (s.material[i] == m) out.push_back(i);
+  return out;
+}
+
+double distance2(const ParticleStore& s, std::uint32_t i, std::uint32_t j) {
+  const double dx = double(s.px[j]) - s.px[i], dy = double(s.py[j]) - s.py[i], dz = double(s.pz[j]) - s.pz[i];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+}  // namespace
+
+double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b, double damping,
+                          double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
+  if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
+  const std::vector<std::uint32_t> as = particlesOf(s, a);
+  const std::vector<std::uint32_t> bs = a == b ? as : particlesOf(s, b);
+  if (as.empty() || bs.empty()) return 0;
+  const double c2 = cutoff * cutoff;
+  // The most crowded of up to kCrowdSamples a particles, spread over the store: where
+  // the fastest mode lives (the first of equals, so the same state gives the same answer).
+  std::uint32_t centre = as.front();
+  std::size_t most = 0;
+  const std::size_t samples = std::min(as.size(), kCrowdSamples);
+  for (std::size_t k = 0; k < samples; ++k) {
+    const std::uint32_t i = as[k * as.size() / samples];
+    std::size_t n = 0;
+    for (const std::uint32_t j : bs) n += j != i && distance2(s, i, j) < c2;
+    if (n > most) {
+      most = n;
+      centre = i;
+    }
+  }
+  if (most == 0) return 0;
+  // The patch: the kPatchParticles a and b particles nearest the centre.
+  std::vector<std::pair<double, std::uint32_t>> near;
+  auto gather = [&](const std::vector<std::uint32_t>& list) {
+    for (const std::uint32_t j : list) near.emplace_back(distance2(s, centre, j), j);
+  };
+  gather(as);
+  if (a != b) gather(bs);
+  if (near.size() > kPatchParticles) {
+    std::nth_element(near.begin(), near.begin() + kPatchParticles, near.end());
+    near.resize(kPatchParticles);
+  }
+  std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+  const std::size_t n = near.size();
+  // Its a-b pairs within the cutoff, with their unit vectors.
+  struct Edge {
+    std::uint32_t i, j;
+    double nx, ny, nz;
+  };
+  std::vector<Edge> edges;
+  std::vector<double> weight(n);  // sqrt(1 / mass): the operator M^-1/2 D M^-1/2 is symmetric
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::uint32_t i = near[p].second;
+    weight[p] = std::sqrt(s.material[i] == a ? inverseMassA : inverseMassB);
+    for (std::size_t q = p + 1; q < n; ++q) {
+      const std::uint32_t j = near[q].second;
+      const bool pair = (s.material[i] == a && s.material[j] == b) || (s.material[i] == b && s.material[j] == a);
+      const double d2 = distance2(s, i, j);
+      if (!pair || !(d2 < c2) || !(d2 > 0)) continue;
+      const double r = std::sqrt(d2);
+      edges.push_back({static_cast<std::uint32_t>(p), static_cast<std::uint32_t>(q), (double(s.px[j]) - s.px[i]) / r,
+                       (double(s.py[j]) - s.py[i]) / r, (double(s.pz[j]) - s.pz[i]) / r});
+    }
+  }
+  if (edges.empty()) return 0;
+  // The largest eigenvalue of A = W D W, D the velocity terms' operator (per pair,
+  // (c I + k_rel n n^T) on the difference of the two velocities), by Lanczos: its
+  // tridiagonal matrix's largest eigenvalue approaches A's from below, much faster than
+  // a power iteration does on a lattice's dense band of fast modes.
+  auto apply = [&](const std::vector<double>& x, std::vector<double>& u, std::vector<double>& y) {
+    for (std::size_t k = 0; k < x.size(); ++k) u[k] = weight[k / 3] * x[k];
+    std::fill(y.begin(), y.end(), 0.0);
+    for (const Edge& e : edges) {
+      const double dx = u[3 * e.i] - u[3 * e.j], dy = u[3 * e.i + 1] - u[3 * e.j + 1],
+                   dz = u[3 * e.i + 2] - u[3 * e.j + 2];
+      const double along = relativeVelocity * (dx * e.nx + dy * e.ny + dz * e.nz);
+      const double gx = damping * dx + along * e.nx, gy = damping * dy + along * e.ny, gz = damping * dz + along * e.nz;
+      y[3 * e.i] += gx;
+      y[3 * e.i + 1] += gy;
+      y[3 * e.i + 2] += gz;
+      y[3 * e.j] -= gx;
+      y[3 * e.j + 1] -= gy;
+      y[3 * e.j + 2] -= gz;
+    }
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] *= weight[k / 3];
+  };
+  auto dot = [](const std::vector<double>& p, const std::vector<double>& q) {
+    double sum = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) sum += p[k] * q[k];
+    return sum;
+  };
+  std::vector<double> v(3 * n), previous(3 * n, 0.0), u(3 * n), w(3 * n);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = static_cast<double>(((k * 2654435761u) >> 7) % 2001) / 1000.0 - 1;
+  double norm = std::sqrt(dot(v, v));
+  for (double& e : v) e /= norm;
+  std::vector<double> alpha, beta;  // the tridiagonal matrix: diagonal, off-diagonal
+  for (int it = 0; it < kLanczosSteps; ++it) {
+    apply(v, u, w);
+    alpha.push_back(dot(w, v));
+    const double last = beta.empty() ? 0.0 : beta.back();
+    for (std::size_t k = 0; k < w.size(); ++k) w[k] -= alpha.back() * v[k] + last * previous[k];
+    norm = std::sqrt(dot(w, w));
+    if (!(norm > 1e-12 * std::abs(alpha.front()))) break;
+    beta.push_back(norm);
+    previous.swap(v);
+    for (std::size_t k = 0; k < w.size(); ++k) v[k] = w[k] / norm;
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(alpha.size());
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    t(k, k) = alpha[static_cast<std::size_t>(k)];
+    if (k + 1 < m) t(k, k + 1) = t(k + 1, k) = beta[static_cast<std::size_t>(k)];
+  }
+  const double rate = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(t, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  return std::max(rate, 0.0);
+}
+
+namespace {
+
 /// The fastest mode's growth per second at time step dt (amplification^(1/dt)).
 double growthPerSecond(Integrator integrator, double omegaDt, double dampingNumber, double dt) {
   const double rho = amplificationPerStep(integrator, omegaDt, dampingNumber);
@@ -50,7 +182,7 @@ double growthPerSecond(Integrator integrator, double omegaDt, double dampingNumb
 
 /// The numbers of a pair at `substeps`, without minimumSubsteps.
 struct Numbers {
-  double omegaDt = 0, damping = 0, travel = 0, growth = 1;
+  double omegaDt = 0, damping = 0, latticeDamping = 0, travel = 0, growth = 1;
   StabilityVerdict verdict = StabilityVerdict::Stable;
 };
 
@@ -59,6 +191,7 @@ struct PairConstants {
   double omega = 0;     ///< sqrt(kLatticeSpringFactor k / mu), 1/s
   double gamma = 0;     ///< damping rate, 1/s
   double push = 0;      ///< max |F| / mu / cutoff, 1/s^2
+  double lattice = 0;   ///< the state's fastest damping rate (latticeDampingRate), 1/s
 };
 
 Numbers numbersAt(const PairConstants& c, double framesPerSecond, int substeps, Integrator integrator) {
@@ -67,13 +200,18 @@ Numbers numbersAt(const PairConstants& c, double framesPerSecond, int substeps, 
   n.omegaDt = c.omega * dt;
   n.damping = c.gamma * dt;
   n.travel = c.push * dt * dt;
-  n.growth = growthPerSecond(integrator, n.omegaDt, n.damping, dt);
+  n.latticeDamping = c.lattice * dt;
+  // The fcc model mode, and the damping alone at the rate the particles' own
+  // neighbourhood gives it (many neighbours within a wide cutoff).
+  n.growth = std::max(growthPerSecond(integrator, n.omegaDt, n.damping, dt),
+                      growthPerSecond(integrator, 0, n.latticeDamping, dt));
   if (n.growth > kGrowthLimit || n.travel > 1) {
     n.verdict = StabilityVerdict::Unstable;
     return n;
   }
   // Twice the time step: the same criteria with a factor 2 to spare.
-  const double growth2 = growthPerSecond(integrator, 2 * n.omegaDt, 2 * n.damping, 2 * dt);
+  const double growth2 = std::max(growthPerSecond(integrator, 2 * n.omegaDt, 2 * n.damping, 2 * dt),
+                                  growthPerSecond(integrator, 0, 2 * n.latticeDamping, 2 * dt));
   n.verdict = growth2 > kGrowthLimit || 4 * n.travel > 1 ? StabilityVerdict::Marginal : StabilityVerdict::Stable;
   return n;
 }
@@ -212,7 +350,8 @@ double amplificationPerStep(Integrator integrator, double omegaDt, double dampin
 }
 
 PairStability assessInteraction(const forces::Interaction& interaction, double massA, double massB,
-                                double framesPerSecond, int substeps, Integrator integrator) {
+                                double framesPerSecond, int substeps, Integrator integrator,
+                                double latticeDamping) {
   PairStability p;
   p.stiffness = maximumSlope(interaction.function);
   p.reducedMass = reducedMass(massA, massB);
@@ -223,9 +362,11 @@ PairStability assessInteraction(const forces::Interaction& interaction, double m
             p.reducedMass;
   const double range = forces::cutoff(interaction.function);
   c.push = range > 0 ? maximumForce(interaction.function) / p.reducedMass / range : 0;
+  c.lattice = latticeDamping;
   const Numbers n = numbersAt(c, framesPerSecond, substeps, integrator);
   p.omegaDt = n.omegaDt;
   p.dampingNumber = n.damping;
+  p.latticeDampingNumber = n.latticeDamping;
   p.travelNumber = n.travel;
   p.growthPerSecond = n.growth;
   p.verdict = n.verdict;
@@ -239,8 +380,16 @@ StabilityReport assessStability(const Model& model, const State* state) {
   report.dt = model.dt();
   const std::size_t nf = std::min(model.fluids.size(), model.table.materials());
   auto add = [&](std::size_t a, std::size_t b, double massB, std::string second) {
-    PairStability p = assessInteraction(model.table.interaction(a, b), model.fluids[a].particleMass, massB,
-                                        model.framesPerSecond, model.substeps, model.integrator);
+    const forces::Interaction& interaction = model.table.interaction(a, b);
+    const double massA = model.fluids[a].particleMass;
+    const double lattice =
+        state == nullptr ? 0
+                         : latticeDampingRate(state->particles, static_cast<std::uint16_t>(a), static_cast<std::uint16_t>(b),
+                                              std::abs(interaction.damping), std::abs(interaction.relativeVelocity),
+                                              forces::cutoff(interaction.function), 1 / massA,
+                                              std::isinf(massB) ? 0.0 : 1 / massB);
+    PairStability p = assessInteraction(interaction, massA, massB, model.framesPerSecond, model.substeps,
+                                        model.integrator, lattice);
     p.first = model.fluids[a].name;
     p.second = std::move(second);
     p.materialA = a;
