@@ -261,7 +261,7 @@ int benchLammpsCommand(const BenchOptions& o) {
     fmt::print(stderr, "note: LAMMPS not found ({}): softsub's side only (Debian: apt-get install lammps)\n",
                o.lammps.empty() ? "lmp on PATH" : o.lammps);
   const fs::path dir = o.keep.empty() ? fs::temp_directory_path() / fmt::format("softsub-bench-{}", ::getpid())
-                                      : fs::path(o.keep);
+                                      : fs::absolute(fs::path(o.keep));  // LAMMPS runs in it: no path relative to here
   fs::create_directories(dir);
   // One thread, then --threads (all cores by default). The root's --threads also caps
   // the whole process (main.cpp), so a second row above it would run on fewer threads

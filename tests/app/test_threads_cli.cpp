@@ -124,13 +124,15 @@ TEST(BenchCli, LammpsRowsFollowTheThreadsOption) {
 
 TEST(BenchCli, LammpsRowsPrintTheBestOfTheRepeatedRunsOfEachCode) {
   TempDir tmp;
-  // A stand-in for lmp: each run counts itself in a file and reports the loop time of
-  // its line in `times` (a run past the last line fails), so the test sees how often it
-  // ran and which time the row printed.
+  // A stand-in for lmp: each run checks that it can open its input, counts itself in a
+  // file and reports the loop time of its line in `times` (a run past the last line
+  // fails), so the test sees how often it ran and which time the row printed. --keep is
+  // relative to the working folder, which LAMMPS does not run in.
   const fs::path fake = tmp / "fake-lmp";
   {
     std::ofstream out(fake);
     out << "#!/bin/sh\n"
+           "[ \"$1\" = -in ] && [ -f \"$2\" ] || exit 4\n"  // the input, from the folder it runs in
            "n=$(cat runs 2>/dev/null || echo 0); n=$((n+1)); echo $n > runs\n"
            "t=$(sed -n \"${n}p\" times); [ -n \"$t\" ] || exit 3\n"
            "echo \"Loop time of $t on 1 procs for 10 steps with 32 atoms\"\n"
@@ -141,7 +143,7 @@ TEST(BenchCli, LammpsRowsPrintTheBestOfTheRepeatedRunsOfEachCode) {
     fs::create_directories(tmp / kept);
     std::ofstream(tmp / kept / "times") << times;
     return runSoftsub("--threads 1 bench lammps --particles 32 --cutoff 2.5 --steps 10 --lammps " + quote(fake) +
-                          " --keep " + quote(tmp / kept) + " " + more,
+                          " --keep " + quote(kept) + " " + more,
                       tmp.path());
   };
   // The fastest run in the middle: neither the first nor the last run is the best.
