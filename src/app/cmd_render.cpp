@@ -264,7 +264,7 @@ int renderCommand(const RenderOptions& o) {
       fmt::print(stderr, "note: --frames reaches frame {}; the scene ends at frame {}, the last drawn\n", *range.last,
                  loaded.desc.simulation.frames);
     scene::Compiled compiled = scene::compile(loaded.desc);
-    if (chatty)
+    if (!o.quiet)  // warnings, unlike notes, also for a pipe or a log (as run's)
       for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();

@@ -266,9 +266,10 @@ int runCommand(const RunOptions& o) {
                      "add mesh or vdb to --formats, or leave them out");
   if (formats.mesh || formats.vdb) checkSurfaceOptions(o.surface, sim.snapshot(), sceneFile);
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
-  // farm log gets nothing but errors.
+  // farm log gets errors and warnings only (a warning is about this run's result: a farm
+  // log must show it too). --quiet leaves errors alone.
   const bool chatty = stderrIsTerminal() && !o.quiet;
-  if (chatty) {
+  if (!o.quiet) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", sceneFile, w);
     if (unstable) fmt::print(stderr, "warning: {}: {}\n", sceneFile, *unstable);

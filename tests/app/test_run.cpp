@@ -2,6 +2,7 @@
 // the seed's flags, and what it reports.
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -167,7 +168,10 @@ TEST(Run, SeedFlagsBehaveAsDocumented) {
       runSoftsub("-f " + quote(scene) + " -updateNum 2 -record 1 -stopRecordingAt 2", tmp.path());
   ASSERT_EQ(seed.code, 0) << seed.err;
   EXPECT_EQ(listFrameFiles(tmp / "two-fluidsSim"), expectedFiles("two-fluids", {"syrup", "oil"}, 2));
-  EXPECT_TRUE(seed.err.empty()) << seed.err;
+  // Not a terminal: no progress, note or summary; warnings only (at 2 substeps the
+  // stability estimate has one).
+  std::istringstream lines(seed.err);
+  for (std::string line; std::getline(lines, line);) EXPECT_EQ(line.rfind("warning: ", 0), 0u) << seed.err;
   // The same run spelled with softsub's own options gives the same bytes.
   const RunResult own =
       runSoftsub("run -q --substeps 2 --frames 2 --out " + quote(tmp / "ref") + " " + quote(scene), tmp.path());

@@ -57,6 +57,15 @@ TEST(Terminal, RunWarnsWhenTheStabilityEstimateCallsTheSceneUnstable) {
             std::string::npos)
       << stiff.out;
   EXPECT_NE(stiff.out.find("raise Substeps to "), std::string::npos) << stiff.out;
+  // A warning is about the run's result, not progress: a pipe or a farm log gets it too,
+  // and only --quiet leaves it out.
+  const RunResult piped = runSoftsub("run --frames 0 --formats none stiff.scene", tmp.path());
+  ASSERT_EQ(piped.code, 0) << piped.err;
+  EXPECT_EQ(piped.err.rfind("warning: stiff.scene: the stability estimate calls jelly / jelly unstable", 0), 0u)
+      << piped.err;
+  EXPECT_EQ(piped.err.find("note:"), std::string::npos) << piped.err;
+  const RunResult quiet = runSoftsub("run -q --frames 0 --formats none stiff.scene", tmp.path());
+  EXPECT_TRUE(quiet.err.empty()) << quiet.err;
   const RunResult adaptive =
       runSoftsubInTerminal("run --frames 0 --formats none --adaptive stiff.scene", tmp.path());
   EXPECT_EQ(adaptive.out.find("stability estimate"), std::string::npos) << adaptive.out;
