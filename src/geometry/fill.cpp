@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "core/error.h"
@@ -189,30 +190,47 @@ void castAxis(int axis, const Grid& grid, const std::vector<Point>& local,
 using Vec = Eigen::Vector3d;
 
 /// Squared distance from p to the segment a-b.
-double segmentDistanceSquared(const Vec& p, const Vec& a, const Vec& b) {
+Vec segmentClosestPoint(const Vec& p, const Vec& a, const Vec& b) {
   const Vec ab = b - a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).squaredNorm();
+  return a + t * ab;
 }
 
-/// Squared distance from p to the triangle (a, b, c) of normal n = (b - a) × (c - a) ≠ 0.
-double triangleDistanceSquared(const Vec& p, const Vec& a, const Vec& b, const Vec& c, const Vec& n) {
+/// The point of the triangle (a, b, c) of normal n = (b - a) × (c - a) ≠ 0 nearest p.
+Vec triangleClosestPoint(const Vec& p, const Vec& a, const Vec& b, const Vec& c, const Vec& n) {
   if ((b - a).cross(p - a).dot(n) >= 0 && (c - b).cross(p - b).dot(n) >= 0 &&
-      (a - c).cross(p - c).dot(n) >= 0) {
-    const double d = (p - a).dot(n);
-    return d * d / n.squaredNorm();
-  }
-  return std::min(
-      {segmentDistanceSquared(p, a, b), segmentDistanceSquared(p, b, c), segmentDistanceSquared(p, c, a)});
+      (a - c).cross(p - c).dot(n) >= 0)
+    return p - ((p - a).dot(n) / n.squaredNorm()) * n;
+  Vec best = segmentClosestPoint(p, a, b);
+  for (const Vec& q : {segmentClosestPoint(p, b, c), segmentClosestPoint(p, c, a)})
+    if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+  return best;
 }
+
+/// A marked voxel's nearest surface point facing each way: bin 2k + (n_k < 0) for the
+/// normals n whose largest component is along axis k (`has` bit per bin).
+struct SurfacePoints {
+  std::array<Vec, 6> at;
+  std::array<double, 6> distance2{};
+  std::uint8_t has = 0;
+  /// The nearest of them.
+  [[nodiscard]] const Vec& nearest() const {
+    int best = -1;
+    for (int b = 0; b < 6; ++b)
+      if ((has >> b & 1) && (best < 0 || distance2[b] < distance2[best])) best = b;
+    return at[best];
+  }
+};
+/// Each marked voxel's surface points (markSurface), by voxel index.
+using NearestPoints = std::unordered_map<std::size_t, SurfacePoints>;
 
 /// Marks the voxels whose centre lies within spacing/2 of a usable triangle. For each triangle
 /// only the columns along its most normal axis are walked, and in each only the few voxels
 /// near the triangle's plane: the cost follows the triangle's area, not its bounding box.
 void markSurface(const Grid& grid, const std::vector<Point>& local,
                  const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<bool>& usable,
-                 std::vector<std::uint8_t>& marks) {
+                 std::vector<std::uint8_t>& marks, NearestPoints* nearest = nullptr) {
   const double s = grid.spacing;
   const double reach = 0.5 * s;
   const double reach2 = reach * reach * (1 + 1e-9);  // a centre exactly spacing/2 away counts
@@ -247,12 +265,24 @@ void markSurface(const Grid& grid, const std::vector<Point>& local,
           continue;
         for (std::size_t k = k0; k <= k1; ++k) {
           p[d] = grid.centre(k);
-          if (triangleDistanceSquared(p, a, b, c, n) > reach2) continue;
+          const Vec q = triangleClosestPoint(p, a, b, c, n);
+          const double d2 = (q - p).squaredNorm();
+          if (d2 > reach2) continue;
           std::size_t ijk[3];
           ijk[d] = k;
           ijk[u] = iu;
           ijk[v] = iv;
-          marks[grid.index(ijk[0], ijk[1], ijk[2])] = 1;
+          const std::size_t i = grid.index(ijk[0], ijk[1], ijk[2]);
+          marks[i] = 1;
+          if (nearest != nullptr) {
+            SurfacePoints& points = (*nearest)[i];
+            const int bin = 2 * d + (n[d] < 0 ? 1 : 0);
+            if (!(points.has >> bin & 1) || d2 < points.distance2[bin]) {
+              points.at[bin] = q;
+              points.distance2[bin] = d2;
+              points.has |= static_cast<std::uint8_t>(1 << bin);
+            }
+          }
         }
       }
   }
@@ -353,21 +383,43 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
       votes = count >= 2 ? 1 : 0;
     }
     if (options.thinParts) {
+      // A part thinner than the spacing holds few lattice points or none: a flat one
+      // none, one modelled at an angle a scattered few (about area × thickness / s³).
+      // A surface sample (a voxel centre within s/2 of a triangle) is added where the
+      // part is thin, a sample nearby facing the other way (the part's other side,
+      // within 1.5 s), and where the surface point nearest it is not already covered by
+      // an inside voxel within 0.9 s (then no particle of this size passes there). So a
+      // thick part gets none, even where its lattice stops short of a face or an edge.
       std::vector<std::uint8_t> surface(grid.voxels(), 0);
-      markSurface(grid, local, mesh.triangles, usable, surface);
-      const auto insideNear = [&](std::size_t x, std::size_t y, std::size_t z) {
+      NearestPoints nearest;
+      markSurface(grid, local, mesh.triangles, usable, surface, &nearest);
+      const double cover2 = 0.81 * s * s, across2 = 2.25 * s * s;
+      const auto wanted = [&](std::size_t x, std::size_t y, std::size_t z, const SurfacePoints& here) {
+        const Vec& q = here.nearest();
+        // Faces of both senses along one axis: those within s/2 of this voxel, or, for
+        // the other sense, within 1.5 s of its nearest point in a neighbouring voxel.
+        bool thinHere = false;
+        for (int k = 0; k < 3; ++k) thinHere = thinHere || (here.has >> (2 * k) & 3) == 3;
         for (std::size_t c = z > 0 ? z - 1 : 0; c <= std::min<std::size_t>(z + 1, grid.n[2] - 1); ++c)
           for (std::size_t b = y > 0 ? y - 1 : 0; b <= std::min<std::size_t>(y + 1, grid.n[1] - 1); ++b)
-            for (std::size_t a = x > 0 ? x - 1 : 0; a <= std::min<std::size_t>(x + 1, grid.n[0] - 1); ++a)
-              if (cells[grid.index(a, b, c)] == 1) return true;
-        return false;
+            for (std::size_t a = x > 0 ? x - 1 : 0; a <= std::min<std::size_t>(x + 1, grid.n[0] - 1); ++a) {
+              const std::size_t j = grid.index(a, b, c);
+              if (cells[j] == 1 && (Vec(grid.centre(a), grid.centre(b), grid.centre(c)) - q).squaredNorm() <= cover2)
+                return false;
+              if (!surface[j] || thinHere) continue;
+              const SurfacePoints& other = nearest.at(j);
+              for (int bin = 0; bin < 6 && !thinHere; ++bin)
+                thinHere = (here.has >> bin & 1) && (other.has >> (bin ^ 1) & 1) &&
+                           (other.at[bin ^ 1] - here.at[bin]).squaredNorm() <= across2;
+            }
+        return thinHere;
       };
-      // Marked 2 (not 1) so that one added sample does not hide its neighbours.
+      // Marked 2 (not 1) so that one added sample does not count as covering others.
       for (std::size_t z = 0; z < grid.n[2]; ++z)
         for (std::size_t y = 0; y < grid.n[1]; ++y)
           for (std::size_t x = 0; x < grid.n[0]; ++x) {
             const std::size_t i = grid.index(x, y, z);
-            if (surface[i] && cells[i] == 0 && !insideNear(x, y, z)) {
+            if (surface[i] && cells[i] == 0 && wanted(x, y, z, nearest.at(i))) {
               cells[i] = 2;
               ++result.thinVoxels;
             }
@@ -381,9 +433,11 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
   for (std::size_t z = 0; z < grid.n[2]; ++z)
     for (std::size_t y = 0; y < grid.n[1]; ++y)
       for (std::size_t x = 0; x < grid.n[0]; ++x)
-        if (cells[grid.index(x, y, z)])
+        if (const std::uint8_t c = cells[grid.index(x, y, z)]; c != 0) {
           result.points.emplace_back(grid.lo[0] + grid.centre(x), grid.lo[1] + grid.centre(y),
                                      grid.lo[2] + grid.centre(z));
+          if (options.thinParts && !options.surfaceOnly) result.thin.push_back(c == 2);
+        }
 
   if (!options.surfaceOnly) {
     if (result.votedVoxels * 100 > anyInside)

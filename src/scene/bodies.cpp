@@ -100,17 +100,23 @@ std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spa
                                   .maxParticles = geometry::meshFillBound(scaled, spacing)});
   std::vector<Vec3> points = closed ? geometry::latticeShell(r.points, spacing, 2) : r.points;
   if (points.empty()) points.push_back(center);  // smaller than one particle
-  if (closed) {
-    // The lattice starts at the mesh's low corner: where a size is not a whole number of
-    // particles, the particles reach the low faces and stop up to a particle short of the
-    // high ones (a 2-unit box at particle size 0.6 rested on three of its faces exactly
-    // and 0.2 deep in the floor on the other three). Centre them in the mesh's box.
+  // The lattice starts at the mesh's low corner: where a size is not a whole number of
+  // particles, the particles reach the low faces and stop up to a particle short of the
+  // high ones (a 2-unit box at particle size 0.6 rested on three of its faces exactly
+  // and 0.2 deep in the floor on the other three). Centre them in the mesh's box, unless
+  // the body has thin parts: their surface samples lie up to half a particle outside the
+  // mesh, and the lattice points alone may end short of the box by a thin part's
+  // thickness, so either box would shift a table (a thick leg under a top thinner than a
+  // particle) off the floor or into it; such a body keeps its lattice where the fill put
+  // it, its leg's particles flush with the leg's foot.
+  const bool thin = std::find(r.thin.begin(), r.thin.end(), true) != r.thin.end();
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (std::size_t i = 0; closed && !thin && i < r.points.size(); ++i) {
+    lo = lo.cwiseMin(r.points[i]);
+    hi = hi.cwiseMax(r.points[i]);
+  }
+  if (lo.x() <= hi.x()) {
     const Aabb box = scaled.bounds();
-    Vec3 lo = points.front(), hi = points.front();
-    for (const Vec3& p : points) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
     const Vec3 shift = 0.5 * (Vec3(box.lo[0] + box.hi[0], box.lo[1] + box.hi[1], box.lo[2] + box.hi[2]) - (lo + hi));
     for (Vec3& p : points) p += shift;
   }

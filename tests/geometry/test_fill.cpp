@@ -307,6 +307,51 @@ TEST(FillMesh, ThinPartsSampleWhatIsThinnerThanTheSpacingAndLeaveTheRestAlone) {
   EXPECT_EQ(cube.points.size(), fill(boxMesh(Vec3(0.1, 0.2, 0.3), Vec3(4.1, 3.2, 2.3)), s).points.size());
 }
 
+// A plate modelled at an angle (a chute, a tray, a blade): the lattice's few points inside
+// it must not hide the surface samples around them. Every point of the plate's mid-surface
+// lies within 0.9 spacings of a particle (a particle of that size cannot pass: the
+// lattice's own worst is half its cell's diagonal, 0.87), at any angle and thickness.
+// Before, each lone lattice point inside such a plate hid the surface samples around it:
+// 1.6 spacings at 20 degrees, 0.2 thick.
+double largestGapOnTiltedPlate(double degrees, double thickness, double s, std::size_t* thin = nullptr,
+                               std::size_t* points = nullptr) {
+  const double a = degrees * std::numbers::pi / 180, c = std::cos(a), sn = std::sin(a);
+  TriangleMesh plate = boxMesh(Vec3(-3, -thickness / 2, -3), Vec3(3, thickness / 2, 3));
+  for (Vec3& v : plate.vertices) v = Vec3(c * v.x() - sn * v.y(), sn * v.x() + c * v.y(), v.z());
+  MeshFillOptions o;
+  o.spacing = s;
+  o.thinParts = true;
+  const MeshFillResult r = fillMesh(plate, o);
+  if (thin != nullptr) *thin = r.thinVoxels;
+  if (points != nullptr) *points = r.points.size();
+  double gap = 0;
+  for (double u = -2.5; u <= 2.5; u += 0.05)
+    for (double w = -2.5; w <= 2.5; w += 0.05) {
+      const Vec3 q(c * u, sn * u, w);
+      double nearest = 1e9;
+      for (const Vec3& p : r.points) nearest = std::min(nearest, (p - q).norm());
+      gap = std::max(gap, nearest);
+    }
+  return gap;
+}
+
+TEST(FillMesh, ThinPartsCoverAPlateModelledAtAnAngle) {
+  const double s = 0.5;
+  for (const double degrees : {0.0, 20.0, 30.0, 45.0})
+    for (const double thickness : {0.2, 0.4, 0.6, 0.8})
+      EXPECT_LE(largestGapOnTiltedPlate(degrees, thickness, s), 0.9 * s) << degrees << " degrees, " << thickness;
+  // A thick slab at an angle is the lattice's alone, even where its staircase leaves the
+  // surface more than 0.9 s from a lattice point; so is a box whose size is not a whole
+  // number of particles (its lattice stops up to a particle short of its high faces).
+  std::size_t thin = 1;
+  EXPECT_LE(largestGapOnTiltedPlate(30, 2.0, s, &thin), 0.9 * s);
+  EXPECT_EQ(thin, 0U);
+  MeshFillOptions o;
+  o.spacing = 0.6;
+  o.thinParts = true;
+  EXPECT_EQ(fillMesh(boxMesh(Vec3(0, 0, 0), Vec3(2, 2, 2)), o).thinVoxels, 0U);
+}
+
 TEST(LatticeShell, KeepsTheOuterLayersOfACube) {
   std::vector<Vec3> cube;
   for (int z = 0; z < 6; ++z)

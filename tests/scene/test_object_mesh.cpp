@@ -2,11 +2,13 @@
 // Geometry path rules are the mesh fills' (one code path); a dynamic mesh-shaped body
 // must be closed; the mesh's voxel bound at the object's particle size counts toward the
 // particle cap. The rules that need no file are rows of reader_error_rows.h.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <sstream>
 
 #include "core/error.h"
 #include "scene/compile.h"
@@ -64,6 +66,37 @@ TEST(ObjectMesh, BodyParticlesAreCentredInTheShapeWhateverTheParticleSize) {
       EXPECT_GE(*hi + 0.5 * size, 1.0 - 0.5 * size) << size;
     }
   }
+}
+
+// A body with a part thinner than its particles (a table: a leg 3 high, 6 particles of
+// 0.5, under a top 0.2 thick) is not centred: the top's surface samples stick out of the
+// mesh by up to half a particle, so centring on them sank the leg's particles 0.15 below
+// its foot and the table stood 0.15 above the floor. Its lattice stays flush with the
+// foot, as a body of whole particles is.
+TEST(ObjectMesh, ABodyWithThinPartsKeepsItsLatticeFlushWithItsThickParts) {
+  TempFolder tmp;
+  std::string obj;
+  int base = 0;
+  for (const auto& [lo, hi] : {std::pair{Vec3(0, 0, 0), Vec3(2, 3, 2)}, std::pair{Vec3(-3, 3, -3), Vec3(5, 3.2, 5)}}) {
+    for (int k = 0; k < 8; ++k)
+      obj += fmt::format("v {} {} {}\n", k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    for (const char* face : {"1 5 7 3", "2 4 8 6", "1 2 6 5", "3 7 8 4", "1 3 4 2", "5 6 8 7"}) {
+      obj += "f";
+      std::istringstream corners(face);
+      for (int v = 0; corners >> v;) obj += fmt::format(" {}", v + base);
+      obj += "\n";
+    }
+    base += 8;
+  }
+  writeText(tmp.path() / "table.obj", obj);
+  writeText(tmp.path() / "t.scene", objectScene("table.obj", "<ParticleSize>0.5</ParticleSize>\n"));
+  const Compiled c = compile(readSceneFile((tmp.path() / "t.scene").string()));
+  const rigid::BodySet& b = c.model.bodies;
+  ASSERT_EQ(b.bodies.size(), 1U);
+  const double lowest = *std::min_element(b.oy.begin(), b.oy.end()) - b.bodies[0].originInBody.y();
+  EXPECT_NEAR(lowest, 0.25, 1e-5) << "the foot's particles sit half a particle above the foot";
+  const double highest = *std::max_element(b.oy.begin(), b.oy.end()) - b.bodies[0].originInBody.y();
+  EXPECT_NEAR(highest, 3.25, 1e-5) << "the top's samples, within half a particle of the top";
 }
 
 TEST(ObjectMesh, ClosedMeshIsAMeshShapedBodyAndRoundTrips) {
