@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -89,6 +90,47 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
             "Object '{}': {} of {} particles start outside the container ({}); {}", info.name, count, info.count, box,
             info.dynamic ? "the walls push the body back inside over the first substeps, with a jolt"
                          : "a static body never moves, and the fluids inside cannot reach the part outside"));
+    }
+  }
+  // A ParticleSize far from the particles' own spacing: it sets how far the walls keep
+  // their centres, the surfaces' radius and the drawing, and its default, 1, is absolute;
+  // a centimetre-scale scene that left it out collapsed onto a line between walls that
+  // left it no room. The spacing: the median distance to the nearest neighbour of up to
+  // 64 particles spread over the fluid.
+  std::size_t begin = 0;
+  for (std::size_t f = 0; f < m.fluids.size(); begin += m.fluids[f].count, ++f) {
+    const solver::FluidInfo& fluid = m.fluids[f];
+    if (fluid.count < 2) continue;
+    const std::size_t samples = std::min<std::size_t>(fluid.count, 64);
+    std::vector<double> nearest;
+    for (std::size_t k = 0; k < samples; ++k) {
+      const std::size_t i = begin + k * fluid.count / samples;
+      double best = INFINITY;
+      for (std::size_t j = begin; j < begin + fluid.count; ++j) {
+        const double dx = double(s.px[j]) - s.px[i], dy = double(s.py[j]) - s.py[i], dz = double(s.pz[j]) - s.pz[i];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        if (j != i && d2 > 0) best = std::min(best, d2);
+      }
+      if (std::isfinite(best)) nearest.push_back(std::sqrt(best));
+    }
+    if (nearest.empty()) continue;
+    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
+    const double spacing = nearest[nearest.size() / 2];
+    const double ratio = fluid.particleSize / spacing;
+    if (ratio > 3 || ratio < 1.0 / 3)
+      out.push_back(fmt::format(
+          "Fluid '{}': ParticleSize {:g} is {:.3g} times the spacing of its particles ({:.3g}); the walls keep "
+          "particle centres half a ParticleSize from them, and surfaces and pictures use it: set ParticleSize "
+          "near the spacing (a scene in other units must set it: the default, 1, is absolute)",
+          fluid.name, fluid.particleSize, ratio, spacing));
+    if (m.container) {
+      const solver::Container& c = *m.container;
+      const double room = std::min({c.hi[0] - c.lo[0], c.hi[2] - c.lo[2], c.closed ? c.hi[1] - c.lo[1] : INFINITY});
+      if (room < fluid.particleSize)
+        out.push_back(fmt::format("Fluid '{}': the container is {:g} across, narrower than its ParticleSize {:g}: the "
+                                  "walls, which keep centres half a ParticleSize in, leave no room and squeeze the "
+                                  "fluid onto a line",
+                                  fluid.name, room, fluid.particleSize));
     }
   }
   // Exact duplicates: sorted positions, equal neighbours.

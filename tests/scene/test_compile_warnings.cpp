@@ -89,13 +89,38 @@ TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   EXPECT_TRUE(warningsOf(object("far", "100 3 0", true)).empty());
 }
 
+// ParticleSize (default 1, absolute) against the particles' own spacing: a scene in
+// centimetres that leaves it out gets told, one that sets it does not; and a container
+// narrower than a particle (its walls keep centres half a particle in) is named.
+TEST(CompileWarnings, NamesAParticleSizeFarFromTheSpacing) {
+  const std::string centimetres = "<Environment><Width>0.2</Width><Height>0.3</Height><Depth>0.2</Depth></Environment>";
+  const std::string cube = "<Fill><Shape>box</Shape><Min>-0.05 0.005 -0.05</Min><Max>0.05 0.05 0.05</Max>"
+                           "<Spacing>0.011</Spacing></Fill>";
+  const std::vector<std::string> left = warningsOf(centimetres + "<Fluid><Name>goo</Name>" + cube + "</Fluid>");
+  ASSERT_EQ(left.size(), 2u);
+  EXPECT_NE(left[0].find("Fluid 'goo': ParticleSize 1 is 90.9 times the spacing of its particles (0.011)"),
+            std::string::npos)
+      << left[0];
+  EXPECT_NE(left[1].find("Fluid 'goo': the container is 0.2 across, narrower than its ParticleSize 1"),
+            std::string::npos)
+      << left[1];
+  EXPECT_TRUE(
+      warningsOf(centimetres + "<Fluid><Name>goo</Name><ParticleSize>0.01</ParticleSize>" + cube + "</Fluid>").empty());
+  // Far too small is as wrong: the walls let particles overlap them.
+  const std::vector<std::string> tiny = warningsOf(kBox + "<Fluid><Name>a</Name><ParticleSize>0.1</ParticleSize>" +
+                                                   fill("0 0 0", "2 2 2") + "</Fluid>");
+  ASSERT_EQ(tiny.size(), 1u);
+  EXPECT_NE(tiny[0].find("ParticleSize 0.1 is 0.1 times the spacing of its particles (1)"), std::string::npos)
+      << tiny[0];
+}
+
 TEST(CompileWarnings, CountsParticlesThatSitExactlyOnAnother) {
   // The same fill twice: each of its 8 points twice; and across fluids.
   const std::vector<std::string> twice = warningsOf(kBox + "<Fluid><Name>a</Name>" + fill("0 0 0", "2 2 2") +
                                                     fill("0 0 0", "2 2 2") + "</Fluid>");
   ASSERT_EQ(twice.size(), 1u);
   EXPECT_NE(twice[0].find("8 particles sit exactly where another one does"), std::string::npos) << twice[0];
-  const std::vector<std::string> across = warningsOf(kBox + "<Fluid><Name>a</Name><Particles>1 1 1  1 1 1.001</Particles>"
+  const std::vector<std::string> across = warningsOf(kBox + "<Fluid><Name>a</Name><Particles>1 1 1  1 1 2</Particles>"
                                                      "</Fluid><Fluid><Name>b</Name><Particles>1 1 1</Particles></Fluid>");
   ASSERT_EQ(across.size(), 1u);
   EXPECT_NE(across[0].find("1 particle sits exactly"), std::string::npos) << across[0];
