@@ -725,11 +725,13 @@ void Simulation::checkFinite(const Extremes* scanned) const {
 // lowest id, that failed the check.
 void Simulation::reportBlowUp() const {
   // What shortens the substep: with --adaptive on, its floor (Substeps) or its ceiling.
-  const std::string shorter = model_.adaptiveSubsteps
-                                  ? fmt::format("raise Substeps (the fewest --adaptive uses) or --max-substeps "
-                                                "(now {})",
-                                                model_.maxSubsteps)
-                                  : std::string("raise Substeps or use --adaptive");
+  // At the substeps' limit only a shorter frame shortens it.
+  const std::string shorter =
+      substeps_ >= kMaxStableSubsteps
+          ? fmt::format("raise FramesPerSecond: the {} substeps a frame are the most there can be", substeps_)
+      : model_.adaptiveSubsteps
+          ? fmt::format("raise Substeps (the fewest --adaptive uses) or --max-substeps (now {})", model_.maxSubsteps)
+          : std::string("raise Substeps or use --adaptive");
   const std::string when =
       substepInFrame_ > 0
           ? fmt::format("frame {}, substep {} of {}", state_.frame + 1, substepInFrame_, substeps_)

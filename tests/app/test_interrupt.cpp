@@ -90,6 +90,14 @@ TEST(BlowUp, ExitsFourNamingTheFrameAndKeepsEarlierFrames) {
   // Frame 0 is complete (its manifest and checkpoint too); nothing of frame 1 is there.
   EXPECT_EQ(listFiles(tmp / "blowSim"), (std::vector<std::string>{"blow.0000.sim", "checkpoint/blow.0000.state",
                                                                   "manifest/blow.0000.manifest"}));
+  EXPECT_NE(error.find("raise Substeps or use --adaptive"), std::string::npos) << r.err;
+  // At the most substeps a frame can have, only a higher frame rate shortens the step.
+  const RunResult most = runSoftsub("run blow.scene --formats none --substeps 10000", tmp.path());
+  EXPECT_EQ(most.code, 4) << most.err;
+  EXPECT_NE(most.err.find("raise FramesPerSecond: the 10000 substeps a frame are the most there can be"),
+            std::string::npos)
+      << most.err;
+  EXPECT_EQ(most.err.find("raise Substeps"), std::string::npos) << most.err;
 }
 
 }  // namespace
