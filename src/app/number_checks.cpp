@@ -40,8 +40,17 @@ CLI::Validator wholeNumberIn(std::int64_t least, std::int64_t most, std::string 
         const auto [ptr, ec] = std::from_chars(first, end, v);
         if (ec == std::errc::result_out_of_range)
           return fmt::format("{} is out of range (allowed: {})", text, allowed);
-        if (ec != std::errc() || ptr != end || first == end)
-          return fmt::format("{} is not a whole number (allowed: {})", text, allowed);
+        if (ec != std::errc() || ptr != end || first == end) {
+          // A whole number written with an exponent ("2e7") is one too.
+          double d = 0;
+          const auto [dptr, dec] = std::from_chars(first, end, d);
+          if (first == end || dec != std::errc() || dptr != end || !std::isfinite(d) || d != std::floor(d))
+            return fmt::format("{} is not a whole number (allowed: {})", text, allowed);
+          // 2^63 and beyond do not fit; below that the conversion is exact for whole d.
+          if (std::abs(d) >= 9.223372036854775807e18)
+            return fmt::format("{} is out of range (allowed: {})", text, allowed);
+          v = static_cast<std::int64_t>(d);
+        }
         if (v < least || v > most) return fmt::format("{} is out of range (allowed: {})", text, allowed);
         // Plain decimal for CLI11's own conversion, which reads a leading 0 as octal
         // ("0048" would be refused, "0012" taken as 10). Kept because the option
@@ -65,7 +74,8 @@ CLI::Validator oneOf(std::vector<std::string> names) {
 }
 
 CLI::Validator particleCap() {
-  return wholeNumberIn(1, std::numeric_limits<std::int64_t>::max(), "a whole number >= 1");
+  return wholeNumberIn(1, std::numeric_limits<std::int64_t>::max(),
+                       fmt::format("a whole number in [1, {}]", std::numeric_limits<std::int64_t>::max()));
 }
 
 }  // namespace softsub::app

@@ -29,8 +29,9 @@ namespace softsub::app {
 /// One of `names`: "rk4 is not one of the choices (allowed: a, b, c)".
 [[nodiscard]] CLI::Validator oneOf(std::vector<std::string> names);
 
-/// A particle count cap: >= 1 ("0 is out of range (allowed: a whole number >= 1)", not
-/// CLI::PositiveNumber's range up to the largest double written out in 309 digits).
+/// A particle count cap: >= 1 ("0 is out of range (allowed: a whole number in [1,
+/// 9223372036854775807])", not CLI::PositiveNumber's range up to the largest double
+/// written out in 309 digits).
 [[nodiscard]] CLI::Validator particleCap();
 
 }  // namespace softsub::app

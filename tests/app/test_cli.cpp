@@ -177,12 +177,22 @@ TEST(Cli, AParticleCapBelowOneSaysWhatIsAllowed) {
   for (const std::string command : {"run", "render --out r", "view"}) {
     const RunResult r = runSoftsub(command + " --max-particles 0 " + quote(scene), tmp.path());
     EXPECT_EQ(r.code, 2) << command;
-    EXPECT_NE(r.err.find("error: command line: --max-particles: 0 is out of range (allowed: a whole number >= 1)"),
+    EXPECT_NE(r.err.find("error: command line: --max-particles: 0 is out of range (allowed: a whole number in [1, "
+                         "9223372036854775807])"),
               std::string::npos)
         << command << ": " << r.err;
     EXPECT_LT(r.err.size(), 300u) << r.err;
   }
   EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"});
+  // A whole number with an exponent is one ("2e7"); 2.5e0 is not, and 1e19 is too many.
+  EXPECT_EQ(runSoftsub("run --frames 0 --formats none --max-particles 2e7 " + quote(scene), tmp.path()).code, 0);
+  const RunResult small = runSoftsub("run --frames 0 --formats none --max-particles 1e2 " + quote(scene), tmp.path());
+  EXPECT_EQ(small.code, 2);
+  EXPECT_NE(small.err.find("more than the cap of 100"), std::string::npos) << small.err;
+  const RunResult half = runSoftsub("run --max-particles 2.5e0 " + quote(scene), tmp.path());
+  EXPECT_NE(half.err.find("--max-particles: 2.5e0 is not a whole number"), std::string::npos) << half.err;
+  const RunResult huge = runSoftsub("run --max-particles 1e19 " + quote(scene), tmp.path());
+  EXPECT_NE(huge.err.find("--max-particles: 1e19 is out of range"), std::string::npos) << huge.err;
 }
 
 // The ends of the ranges are allowed: --frames 0 writes only the initial state.
