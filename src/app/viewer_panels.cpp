@@ -352,7 +352,8 @@ void Viewer::drawFluidPanels() {
         for (const solver::PairStability& s : stability_->pairs)
           if (s.first == fl.name && s.second == fl.name)
             ImGui::TextColored(verdictColour(s.verdict), "%s: omega dt %.3f, damping %.3f%s",
-                               std::string(solver::verdictName(s.verdict)).c_str(), s.omegaDt, std::max(s.dampingNumber, s.latticeDampingNumber),
+                               std::string(solver::verdictName(s.verdict)).c_str(), s.omegaDt,
+                               std::max(s.dampingNumber, s.latticeDampingNumber),
                                s.verdict == solver::StabilityVerdict::Stable
                                    ? ""
                                    : fmt::format(", needs {} substeps", s.minimumSubsteps).c_str());

@@ -189,7 +189,7 @@ void castAxis(int axis, const Grid& grid, const std::vector<Point>& local,
 
 using Vec = Eigen::Vector3d;
 
-/// Squared distance from p to the segment a-b.
+/// The point of the segment a-b nearest p.
 Vec segmentClosestPoint(const Vec& p, const Vec& a, const Vec& b) {
   const Vec ab = b - a;
   const double len2 = ab.squaredNorm();
@@ -433,11 +433,9 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
   for (std::size_t z = 0; z < grid.n[2]; ++z)
     for (std::size_t y = 0; y < grid.n[1]; ++y)
       for (std::size_t x = 0; x < grid.n[0]; ++x)
-        if (const std::uint8_t c = cells[grid.index(x, y, z)]; c != 0) {
+        if (cells[grid.index(x, y, z)])
           result.points.emplace_back(grid.lo[0] + grid.centre(x), grid.lo[1] + grid.centre(y),
                                      grid.lo[2] + grid.centre(z));
-          if (options.thinParts && !options.surfaceOnly) result.thin.push_back(c == 2);
-        }
 
   if (!options.surfaceOnly) {
     if (result.votedVoxels * 100 > anyInside)

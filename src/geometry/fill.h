@@ -27,9 +27,6 @@ struct MeshFillResult {
   std::uint64_t votedVoxels = 0;   ///< voxels where the three ray directions did not all agree (volume fill)
   std::uint64_t testedVoxels = 0;  ///< voxels of the grid
   std::uint64_t thinVoxels = 0;    ///< points added by MeshFillOptions::thinParts
-  /// With thinParts: per point, whether it is one of those (a surface sample, not a
-  /// lattice point inside); empty otherwise.
-  std::vector<bool> thin;
   std::vector<std::string> warnings;  ///< one sentence each, e.g. the axes disagree: the mesh is not closed
 };
 

@@ -109,13 +109,12 @@ std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spa
   // thickness, so either box would shift a table (a thick leg under a top thinner than a
   // particle) off the floor or into it; such a body keeps its lattice where the fill put
   // it, its leg's particles flush with the leg's foot.
-  const bool thin = std::find(r.thin.begin(), r.thin.end(), true) != r.thin.end();
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (std::size_t i = 0; closed && !thin && i < r.points.size(); ++i) {
-    lo = lo.cwiseMin(r.points[i]);
-    hi = hi.cwiseMax(r.points[i]);
-  }
-  if (lo.x() <= hi.x()) {
+  if (closed && r.thinVoxels == 0) {
+    Vec3 lo = points.front(), hi = points.front();
+    for (const Vec3& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
     const Aabb box = scaled.bounds();
     const Vec3 shift = 0.5 * (Vec3(box.lo[0] + box.hi[0], box.lo[1] + box.hi[1], box.lo[2] + box.hi[2]) - (lo + hi));
     for (Vec3& p : points) p += shift;

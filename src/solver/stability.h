@@ -96,8 +96,8 @@ struct StabilityReport {
 /// velocity, `relativeVelocity` on its component along the line between the two) damp a
 /// mode of the particles of materials a and b where they sit in `s`: the largest
 /// eigenvalue of M^-1/2 D M^-1/2 (D: the terms' operator over every a-b pair within
-/// `cutoff`), by power iteration on a patch of at most 3,000 particles within 3 cutoffs
-/// of the most crowded of 64 sampled a particles. A lower bound that comes within a few
+/// `cutoff`), by 60 Lanczos steps on the patch of the 3,000 a and b particles nearest the
+/// most crowded of 64 sampled a particles. A lower bound that comes within a few
 /// per cent for lattices (16 c / m for fcc with 12 neighbours, 36 c / m for simple cubic
 /// with 26). inverseMass 0: particles that do not move (static bodies). 0 when no a
 /// particle has a b neighbour.
