@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -486,6 +487,75 @@ std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, 
         if (n[0] < 0 || n[1] < 0 || n[2] < 0 || !occupied.contains(key(n[0], n[1], n[2]))) shell = true;
       }
     if (shell) out.push_back(points[i]);
+  }
+  return out;
+}
+
+std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points, double radius,
+                                     double toleranceDegrees) {
+  std::vector<Vec3> out(points.size(), Vec3::Zero());
+  if (points.empty() || mesh.triangles.empty() || !(radius > 0) || !std::isfinite(radius)) return out;
+  // Triangles bucketed by the cubes of side `radius` their box overlaps: the triangles
+  // within `radius` of a point lie in the 27 cubes around the point's own.
+  const Aabb box = mesh.bounds();
+  const Vec lo(box.lo[0], box.lo[1], box.lo[2]);
+  const auto cube = [&](const Vec& p, int k) { return static_cast<long>(std::floor((p[k] - lo[k]) / radius)); };
+  const auto key = [](long x, long y, long z) {  // 21 bits an axis, as latticeShell
+    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
+           static_cast<std::uint64_t>(z & 0x1FFFFF);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cubes;
+  std::vector<Vec> unit(mesh.triangles.size(), Vec::Zero());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    if (tri[0] >= mesh.vertices.size() || tri[1] >= mesh.vertices.size() || tri[2] >= mesh.vertices.size()) continue;
+    const Vec a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
+    const Vec n = (b - a).cross(c - a);
+    if (!(n.squaredNorm() > 0) || !n.allFinite()) continue;
+    unit[t] = n.normalized();
+    const Vec tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+    for (long z = cube(tlo, 2); z <= cube(thi, 2); ++z)
+      for (long y = cube(tlo, 1); y <= cube(thi, 1); ++y)
+        for (long x = cube(tlo, 0); x <= cube(thi, 0); ++x) {
+          // Only the cubes the triangle's plane passes near (a large slanted face's box
+          // holds many it does not).
+          const Vec centre = lo + radius * (Vec(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)).array() + 0.5).matrix();
+          if (std::abs(unit[t].dot(centre - a)) > radius) continue;  // > half the cube's diagonal: misses it
+          cubes[key(x, y, z)].push_back(static_cast<std::uint32_t>(t));
+        }
+  }
+  const double cosTolerance = std::cos(toleranceDegrees * std::numbers::pi / 180.0);
+  const double radius2 = radius * radius;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec p = points[i];
+    if (!p.allFinite()) continue;
+    const long cx = cube(p, 0), cy = cube(p, 1), cz = cube(p, 2);
+    double nearest2 = radius2;
+    Vec normal = Vec::Zero(), first = Vec::Zero();
+    bool bent = false, any = false;
+    for (long z = cz - 1; z <= cz + 1 && !bent; ++z)
+      for (long y = cy - 1; y <= cy + 1 && !bent; ++y)
+        for (long x = cx - 1; x <= cx + 1 && !bent; ++x) {
+          const auto found = cubes.find(key(x, y, z));
+          if (found == cubes.end()) continue;
+          for (const std::uint32_t t : found->second) {
+            const auto& tri = mesh.triangles[t];
+            const Vec a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
+            const double d2 = (triangleClosestPoint(p, a, b, c, (b - a).cross(c - a)) - p).squaredNorm();
+            if (d2 > radius2) continue;
+            if (!any) first = unit[t];
+            if (std::abs(unit[t].dot(first)) < cosTolerance) {
+              bent = true;
+              break;
+            }
+            if (!any || d2 < nearest2) {
+              nearest2 = d2;
+              normal = unit[t];
+            }
+            any = true;
+          }
+        }
+    if (any && !bent) out[i] = normal;
   }
   return out;
 }

@@ -54,4 +54,14 @@ namespace softsub::geometry {
 /// keeps only its shell: interior particles never touch anything. Order is kept.
 [[nodiscard]] std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers);
 
+/// For each point, the normal of the mesh where the mesh is flat around it: the unit
+/// normal of the triangle nearest the point when every triangle within `radius` of the
+/// point lies in planes within `toleranceDegrees` of that one (either sense: a thin plate's
+/// two faces count as one plane), or zero where no triangle is within `radius` or the
+/// triangles within it bend away (an edge, a corner, a curve coarser than the tolerance).
+/// The sign is arbitrary: who uses it orients it (rigid contacts point it at the other
+/// particle). Zero-area triangles are skipped.
+[[nodiscard]] std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points,
+                                                   double radius, double toleranceDegrees);
+
 }  // namespace softsub::geometry

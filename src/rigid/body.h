@@ -61,6 +61,11 @@ struct BodySet {
   std::uint32_t firstId = 0;      ///< lowest particle id of any body (bodies' ids are contiguous)
   /// Body-space offset of particle id (firstId + k) from its body's centre of mass.
   std::vector<float> ox, oy, oz;
+  /// Body space: the unit normal of the flat face that particle id (firstId + k) lies
+  /// under (geometry::flatSurfaceNormals; sign arbitrary), or zero (an edge, a corner, a
+  /// curve, the inside). Contacts take a flat face's normal instead of the line between
+  /// particle centres, which tilts wherever two lattices do not line up.
+  std::vector<float> nx, ny, nz;
 
   [[nodiscard]] bool empty() const { return bodies.empty(); }
   /// Total body particles.

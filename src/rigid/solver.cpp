@@ -8,6 +8,9 @@ namespace softsub::rigid {
 
 namespace {
 
+// cos 8 degrees: two flat faces whose normals are this close to opposite meet face to face.
+constexpr double kFacesMeet = 0.99;
+
 // Effective inverse mass of a contact along d: 1/ma + 1/mb + (ra x d) . Ia⁻¹ (ra x d) + (rb x d) . Ib⁻¹ (rb x d).
 double inverseMassAlong(double invMa, const Mat3& invIa, const Vec3& ra, double invMb, const Mat3& invIb,
                         const Vec3& rb, const Vec3& d) {
@@ -63,8 +66,60 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
   }
 }
 
+// Two particles of two bodies touch; the line between their centres is the contact
+// normal of two spheres, but where one of them lies under a flat face (BodySet::nx), the
+// face is what touches: the normal is the face's and the depth is measured along it, so
+// a box resting on a box does not rest on tilted normals where the two lattices do not
+// line up (a box dropped flat with its lattice 0.1 particles off its base's slid off
+// it: every normal leant the same way). Two faces that meet nearly opposite (within
+// about 8 degrees) share their bisector; otherwise the face normal nearer the centre line
+// is taken. A face holds the contact only where the other particle lies over that face
+// particle's own patch (within 1.5 particle radii of the normal through it, and at most
+// 60 degrees off the centre line); elsewhere, past an edge, the centre line stays.
+void RigidSolver::faceContact(const BodySet& set, const ParticleStore& s, std::uint32_t i, std::uint32_t a,
+                              std::uint32_t j, std::uint32_t b, const Vec3& d, double r, double dt,
+                              Contact& c) const {
+  if (set.nx.empty()) return;
+  // Which side of a face i is on: where it was a substep ago (the particles' velocities
+  // are those they last moved with). A fast body can pass a thin plate's middle within
+  // one substep; it is pushed back the way it came, not on through.
+  const Vec3 moved = dt * Vec3(s.vx[i] - s.vx[j], s.vy[i] - s.vy[j], s.vz[i] - s.vz[j]);
+  const Vec3 side = (d - moved).squaredNorm() > 0 ? Vec3(d - moved) : d;
+  const auto faceNormal = [&](std::uint32_t slot, std::uint32_t body, Vec3& n) {
+    const std::uint32_t k = s.id[slot] - set.firstId;
+    const Vec3 local(set.nx[k], set.ny[k], set.nz[k]);
+    if (local.isZero()) return false;
+    n = rot_[body] * local;
+    if (n.dot(side) < 0) n = -n;  // pointing from j's side to i's
+    return true;
+  };
+  Vec3 ni, nj;
+  const bool hasI = faceNormal(i, a, ni), hasJ = faceNormal(j, b, nj);
+  if (!hasI && !hasJ) return;
+  const Vec3 centre = d / r;
+  Vec3 n;
+  double radius = 0;
+  if (hasI && hasJ && ni.dot(nj) > kFacesMeet) {
+    n = (ni + nj).normalized();
+    radius = std::max(set.bodies[a].particleRadius, set.bodies[b].particleRadius);
+  } else if (hasI && (!hasJ || ni.dot(centre) >= nj.dot(centre))) {
+    n = ni;
+    radius = set.bodies[a].particleRadius;
+  } else {
+    n = nj;
+    radius = set.bodies[b].particleRadius;
+  }
+  // Over the face particle's patch (and, on i's side, within 60 degrees of the centre
+  // line); behind its middle only when it has just passed it.
+  const double along = n.dot(d);
+  if (r * r - along * along > kFacePatch * kFacePatch * radius * radius) return;
+  if (along >= 0 ? along < 0.5 * r : !(n.dot(side) > 0)) return;
+  c.normal = n;
+  c.depth = set.bodies[a].particleRadius + set.bodies[b].particleRadius - along;
+}
+
 void RigidSolver::collectContacts(const BodySet& set, const ParticleStore& s, std::span<const SlotPair> pairs,
-                                  const Walls* walls) {
+                                  const Walls* walls, double dt) {
   contacts_.clear();
   const std::uint32_t first = set.firstEntity;
   // Body/body: overlapping particles of two bodies, one of them dynamic.
@@ -80,18 +135,20 @@ void RigidSolver::collectContacts(const BodySet& set, const ParticleStore& s, st
     const Vec3 d = xi - xj;
     const double reach = A.particleRadius + B.particleRadius;
     const double r2 = d.squaredNorm();
-    if (!(r2 < reach * reach) || r2 == 0) continue;
+    if (!(r2 < faceReach2(A.particleRadius, B.particleRadius)) || r2 == 0) continue;
     const double r = std::sqrt(r2);
     Contact c;
     c.normal = d / r;
-    const Vec3 point = xj + c.normal * (B.particleRadius - 0.5 * (reach - r));
+    c.depth = reach - r;
+    faceContact(set, s, i, a, j, b, d, r, dt, c);
+    if (!(c.depth > 0)) continue;
+    const Vec3 point = xj + c.normal * (B.particleRadius - 0.5 * c.depth);
     if (!A.dynamic) {  // keep the dynamic body as a
       std::swap(a, b);
       c.normal = -c.normal;
     }
     c.a = static_cast<std::int32_t>(a);
     c.b = static_cast<std::int32_t>(b);
-    c.depth = reach - r;
     c.slop = settings.slop * std::min(A.particleRadius, B.particleRadius);
     c.restitution = 0.5 * (A.restitution + B.restitution);
     c.friction = 0.5 * (A.friction + B.friction);
@@ -381,7 +438,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, Parti
     vel_[b] = st.velocity;
     omega_[b] = invInertia_[b] * st.angularMomentum;
   }
-  collectContacts(set, s, pairs, walls);
+  collectContacts(set, s, pairs, walls, dt);
   reduceContacts();
   prepareContacts(dt, gravity);
   solveVelocities();

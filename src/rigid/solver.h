@@ -4,6 +4,7 @@
 /// bodies (overlapping particles of different bodies) and with the container walls,
 /// resolved by impulses; interpenetration removed (the seed's stage 5); poses advanced;
 /// fluid particles kept out of the bodies; body particles written back into the store.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -32,6 +33,18 @@ struct ContactSettings {
   double correction = 0.3;       ///< fraction of the overlap removed per substep
   double slop = 0.02;            ///< overlap left alone, as a fraction of the particle radius
 };
+
+/// How far from the normal through a face particle another particle still touches that
+/// face, in the face's particle radii (RigidSolver::faceContact).
+inline constexpr double kFacePatch = 1.5;
+
+/// The squared centre distance within which two body particles of radii ra and rb may
+/// touch: ra + rb for two spheres, further where one lies over the other's flat face
+/// beside the normal through it (kFacePatch). Pair lists of body rows reach this far.
+[[nodiscard]] inline double faceReach2(double ra, double rb) {
+  const double m = std::max(ra, rb);
+  return (ra + rb) * (ra + rb) + kFacePatch * kFacePatch * m * m;
+}
 
 /// A contact between two bodies (b = -1: a wall) at one pair of touching particles.
 struct Contact {
@@ -81,7 +94,12 @@ class RigidSolver {
  private:
   void gatherForces(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store);
   void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
-                       const Walls* walls);
+                       const Walls* walls, double dt);
+  /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,
+  /// c.normal and c.depth those of two spheres): a flat face's normal and depth instead
+  /// where one lies under one (BodySet::nx).
+  void faceContact(const BodySet& set, const ParticleStore& s, std::uint32_t i, std::uint32_t a, std::uint32_t j,
+                   std::uint32_t b, const Vec3& d, double r, double dt, Contact& c) const;
   void reduceContacts();
   void prepareContacts(double dt, const Vec3& gravity);
   void solveVelocities();

@@ -18,6 +18,10 @@ namespace softsub::scene {
 namespace {
 
 constexpr int kSegments = 32;  // primitive meshes: fine enough to fill and to look round
+// A body particle lies under a flat face when the mesh's triangles near it are parallel
+// to this: a box's faces are, a primitive sphere's or cylinder's (11.25 degrees a
+// segment) are not.
+constexpr double kFlatDegrees = 5;
 
 // Primitive extents (unscaled): Size, or fitted to the mesh's bounding box.
 std::vector<double> primitiveSize(const ObjectDesc& o, const Aabb& box) {
@@ -203,6 +207,9 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     const double spacing = objectParticleSize(od, meshes.back());
     const Mass mass = massOf(od, scaled);
     const std::vector<Vec3> points = bodyParticles(scaled, spacing, mass.center);
+    // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
+    // particle inside a face, the next layer more than a particle.
+    const std::vector<Vec3> normals = geometry::flatSurfaceNormals(scaled, points, 0.8 * spacing, kFlatDegrees);
 
     rigid::BodyInfo info;
     info.name = od.name;
@@ -224,11 +231,14 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     const auto material = static_cast<std::uint16_t>(row);
     const auto owner = static_cast<std::uint32_t>(nf + o);
     store.reserve(store.size() + points.size());
-    for (const Vec3& p : points) {
-      const Vec3 off = p - mass.center;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Vec3 off = points[k] - mass.center;
       set.ox.push_back(static_cast<float>(off.x()));
       set.oy.push_back(static_cast<float>(off.y()));
       set.oz.push_back(static_cast<float>(off.z()));
+      set.nx.push_back(static_cast<float>(normals[k].x()));
+      set.ny.push_back(static_cast<float>(normals[k].y()));
+      set.nz.push_back(static_cast<float>(normals[k].z()));
       store.add(0, 0, 0, 0, 0, 0, material, owner);  // placed from the body's state
     }
 

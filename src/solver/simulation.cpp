@@ -112,8 +112,9 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     materialRadius_.push_back(m.radius);
   }
   if (!model_.bodies.empty()) {
-    // Contacts need pairs out to the sum of the two radii: body/body for impulses,
-    // fluid/body to keep fluid out of bodies. Lists reach that far at least.
+    // Contacts need pairs out to the sum of the two radii: fluid/body to keep fluid out
+    // of bodies, body/body for impulses, and those a little further where one particle
+    // lies over the other's flat face (rigid::faceReach2). Lists reach that far at least.
     float bodyRadius = 0, anyRadius = 0;
     for (const MaterialInfo& m : model_.materials) {
       anyRadius = std::max(anyRadius, m.radius);
@@ -122,7 +123,9 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     rowRadius_.resize(nm);
     for (std::size_t a = 0; a < nm; ++a) {
       const MaterialInfo& m = model_.materials[a];
-      const float contact = m.radius + (m.body ? anyRadius : bodyRadius);
+      const float contact =
+          m.body ? std::max(m.radius + anyRadius, static_cast<float>(std::sqrt(rigid::faceReach2(m.radius, bodyRadius))))
+                 : m.radius + bodyRadius;
       rowRadius_[a] = std::max(std::sqrt(model_.table.rowCutoff2(a)), contact);
       c = std::max(c, static_cast<double>(rowRadius_[a]));
     }
