@@ -491,14 +491,17 @@ std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, 
   return out;
 }
 
-std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points, double radius,
-                                     double toleranceDegrees) {
-  std::vector<Vec3> out(points.size(), Vec3::Zero());
+FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points, double radius,
+                               double toleranceDegrees, bool closed) {
+  FlatNormals out;
+  out.normal.assign(points.size(), Vec3::Zero());
+  out.sides.assign(points.size(), 0);
   if (points.empty() || mesh.triangles.empty() || !(radius > 0) || !std::isfinite(radius)) return out;
   // Triangles bucketed by the cubes of side `radius` their box overlaps: the triangles
   // within `radius` of a point lie in the 27 cubes around the point's own.
   const Aabb box = mesh.bounds();
   const Vec lo(box.lo[0], box.lo[1], box.lo[2]);
+  const Vec mid = 0.5 * (lo + Vec(box.hi[0], box.hi[1], box.hi[2]));
   const auto cube = [&](const Vec& p, int k) { return static_cast<long>(std::floor((p[k] - lo[k]) / radius)); };
   const auto key = [](long x, long y, long z) {  // 21 bits an axis, as latticeShell
     return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
@@ -506,10 +509,12 @@ std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector
   };
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cubes;
   std::vector<Vec> unit(mesh.triangles.size(), Vec::Zero());
+  double volume = 0;  // six times the signed volume: its sign says which way the winding faces
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     if (tri[0] >= mesh.vertices.size() || tri[1] >= mesh.vertices.size() || tri[2] >= mesh.vertices.size()) continue;
     const Vec a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
+    volume += (a - mid).dot((b - mid).cross(c - mid));
     const Vec n = (b - a).cross(c - a);
     if (!(n.squaredNorm() > 0) || !n.allFinite()) continue;
     unit[t] = n.normalized();
@@ -517,13 +522,16 @@ std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector
     for (long z = cube(tlo, 2); z <= cube(thi, 2); ++z)
       for (long y = cube(tlo, 1); y <= cube(thi, 1); ++y)
         for (long x = cube(tlo, 0); x <= cube(thi, 0); ++x) {
-          // Only the cubes the triangle's plane passes near (a large slanted face's box
-          // holds many it does not).
-          const Vec centre = lo + radius * (Vec(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)).array() + 0.5).matrix();
+          // Only the cubes the triangle's plane passes through (a large slanted face's
+          // box holds many it does not).
+          const Vec centre =
+              lo + radius * (Vec(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)).array() + 0.5)
+                                .matrix();
           if (std::abs(unit[t].dot(centre - a)) > radius) continue;  // > half the cube's diagonal: misses it
           cubes[key(x, y, z)].push_back(static_cast<std::uint32_t>(t));
         }
   }
+  const double outward = closed && volume != 0 ? (volume > 0 ? 1.0 : -1.0) : 0.0;
   const double cosTolerance = std::cos(toleranceDegrees * std::numbers::pi / 180.0);
   const double radius2 = radius * radius;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -532,7 +540,7 @@ std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector
     const long cx = cube(p, 0), cy = cube(p, 1), cz = cube(p, 2);
     double nearest2 = radius2;
     Vec normal = Vec::Zero(), first = Vec::Zero();
-    bool bent = false, any = false;
+    bool bent = false, any = false, bothWays = false;
     for (long z = cz - 1; z <= cz + 1 && !bent; ++z)
       for (long y = cy - 1; y <= cy + 1 && !bent; ++y)
         for (long x = cx - 1; x <= cx + 1 && !bent; ++x) {
@@ -544,10 +552,12 @@ std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector
             const double d2 = (triangleClosestPoint(p, a, b, c, (b - a).cross(c - a)) - p).squaredNorm();
             if (d2 > radius2) continue;
             if (!any) first = unit[t];
-            if (std::abs(unit[t].dot(first)) < cosTolerance) {
+            const double cosine = unit[t].dot(first);
+            if (std::abs(cosine) < cosTolerance) {
               bent = true;
               break;
             }
+            bothWays = bothWays || cosine < 0;
             if (!any || d2 < nearest2) {
               nearest2 = d2;
               normal = unit[t];
@@ -555,7 +565,10 @@ std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector
             any = true;
           }
         }
-    if (any && !bent) out[i] = normal;
+    if (!any || bent) continue;
+    const bool oneWay = outward != 0 && !bothWays;
+    out.normal[i] = oneWay ? Vec(outward * normal) : normal;
+    out.sides[i] = oneWay ? 1 : 2;
   }
   return out;
 }

@@ -54,14 +54,24 @@ namespace softsub::geometry {
 /// keeps only its shell: interior particles never touch anything. Order is kept.
 [[nodiscard]] std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers);
 
-/// For each point, the normal of the mesh where the mesh is flat around it: the unit
-/// normal of the triangle nearest the point when every triangle within `radius` of the
-/// point lies in planes within `toleranceDegrees` of that one (either sense: a thin plate's
-/// two faces count as one plane), or zero where no triangle is within `radius` or the
-/// triangles within it bend away (an edge, a corner, a curve coarser than the tolerance).
-/// The sign is arbitrary: who uses it orients it (rigid contacts point it at the other
-/// particle). Zero-area triangles are skipped.
-[[nodiscard]] std::vector<Vec3> flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points,
-                                                   double radius, double toleranceDegrees);
+/// Where a mesh is flat around each of some points (the particles of a rigid body).
+struct FlatNormals {
+  /// Per point: the unit normal of the triangle nearest it when every triangle within the
+  /// radius lies in a plane within the tolerance of that one; zero where no triangle is
+  /// within the radius or the triangles bend away (an edge, a corner, a curve coarser
+  /// than the tolerance).
+  std::vector<Vec3> normal;
+  /// Per point: 0 not flat; 1 the normal points out of the solid (a closed mesh, the
+  /// triangles near the point all facing one way); 2 either way (a part thin enough that
+  /// both of its faces are near the point, or an open mesh, which has no inside).
+  std::vector<std::uint8_t> sides;
+};
+
+/// The flat faces near `points` (FlatNormals). `closed`: the mesh is closed and wound
+/// consistently (meshMassProperties accepts it), so its triangles' winding tells outside
+/// from inside (either winding: the sign of its volume says which). Zero-area triangles
+/// are skipped.
+[[nodiscard]] FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points,
+                                             double radius, double toleranceDegrees, bool closed);
 
 }  // namespace softsub::geometry

@@ -62,10 +62,13 @@ struct BodySet {
   /// Body-space offset of particle id (firstId + k) from its body's centre of mass.
   std::vector<float> ox, oy, oz;
   /// Body space: the unit normal of the flat face that particle id (firstId + k) lies
-  /// under (geometry::flatSurfaceNormals; sign arbitrary), or zero (an edge, a corner, a
-  /// curve, the inside). Contacts take a flat face's normal instead of the line between
-  /// particle centres, which tilts wherever two lattices do not line up.
+  /// under (geometry::flatSurfaceNormals), or zero (an edge, a corner, a curve, the
+  /// inside). Contacts take a flat face's normal instead of the line between particle
+  /// centres, which tilts wherever two lattices do not line up. faceSides: 0 no face, 1
+  /// the normal points out of the body, 2 it may point either way (a thin part's
+  /// particles lie under both of its faces).
   std::vector<float> nx, ny, nz;
+  std::vector<std::uint8_t> faceSides;
 
   [[nodiscard]] bool empty() const { return bodies.empty(); }
   /// Total body particles.

@@ -72,49 +72,56 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
 // a box resting on a box does not rest on tilted normals where the two lattices do not
 // line up (a box dropped flat with its lattice 0.1 particles off its base's slid off
 // it: every normal leant the same way). Two faces that meet nearly opposite (within
-// about 8 degrees) share their bisector; otherwise the face normal nearer the centre line
-// is taken. A face holds the contact only where the other particle lies over that face
-// particle's own patch (within 1.5 particle radii of the normal through it, and at most
-// 60 degrees off the centre line); elsewhere, past an edge, the centre line stays.
+// about 8 degrees) share their bisector; otherwise the face normal nearer the centre
+// line is taken. A face holds the contact only where the other particle lies over that
+// face particle's patch (within kFacePatch radii of the normal through it); elsewhere,
+// past an edge, the centre line stays.
+//
+// Which way a face pushes: out of its body (faceSides 1), even for a particle already
+// past the face particle's middle. A thin part's face (2) pushes towards the side the
+// other particle is on, unless both where that particle was a substep ago and the other
+// body's centre are on the far side: then it has just been driven past the middle (a
+// fast ball onto a plate one particle thick) and goes back the way it came.
 void RigidSolver::faceContact(const BodySet& set, const ParticleStore& s, std::uint32_t i, std::uint32_t a,
                               std::uint32_t j, std::uint32_t b, const Vec3& d, double r, double dt,
                               Contact& c) const {
-  if (set.nx.empty()) return;
-  // Which side of a face i is on: where it was a substep ago (the particles' velocities
-  // are those they last moved with). A fast body can pass a thin plate's middle within
-  // one substep; it is pushed back the way it came, not on through.
-  const Vec3 moved = dt * Vec3(s.vx[i] - s.vx[j], s.vy[i] - s.vy[j], s.vz[i] - s.vz[j]);
-  const Vec3 side = (d - moved).squaredNorm() > 0 ? Vec3(d - moved) : d;
-  const auto faceNormal = [&](std::uint32_t slot, std::uint32_t body, Vec3& n) {
+  if (set.faceSides.empty()) return;
+  const Vec3 before = d - dt * Vec3(s.vx[i] - s.vx[j], s.vy[i] - s.vy[j], s.vz[i] - s.vz[j]);
+  // The contact normal (from j's side to i's) that the face of `slot` gives; `away`: from
+  // the other body's centre to the face particle's side, for a thin part.
+  const auto faceNormal = [&](std::uint32_t slot, std::uint32_t body, double sign, const Vec3& away, Vec3& m) {
     const std::uint32_t k = s.id[slot] - set.firstId;
-    const Vec3 local(set.nx[k], set.ny[k], set.nz[k]);
-    if (local.isZero()) return false;
-    n = rot_[body] * local;
-    if (n.dot(side) < 0) n = -n;  // pointing from j's side to i's
+    const std::uint8_t sides = set.faceSides[k];
+    if (sides == 0) return false;
+    m = sign * (rot_[body] * Vec3(set.nx[k], set.ny[k], set.nz[k]));
+    if (sides == 2) {
+      if (m.dot(d) < 0) m = -m;                                 // towards where i is
+      if (m.dot(before) < 0 && m.dot(away) < 0) m = -m;         // just driven past the middle
+    }
     return true;
   };
-  Vec3 ni, nj;
-  const bool hasI = faceNormal(i, a, ni), hasJ = faceNormal(j, b, nj);
+  const Vec3 xi(s.px[i], s.py[i], s.pz[i]), xj(s.px[j], s.py[j], s.pz[j]);
+  Vec3 mi, mj;
+  // i's face points out of a, towards j: the contact normal is its opposite.
+  const bool hasI = faceNormal(i, a, -1.0, xi - pos_[b], mi);
+  const bool hasJ = faceNormal(j, b, 1.0, pos_[a] - xj, mj);
   if (!hasI && !hasJ) return;
   const Vec3 centre = d / r;
-  Vec3 n;
+  Vec3 m;
   double radius = 0;
-  if (hasI && hasJ && ni.dot(nj) > kFacesMeet) {
-    n = (ni + nj).normalized();
+  if (hasI && hasJ && mi.dot(mj) > kFacesMeet) {
+    m = (mi + mj).normalized();
     radius = std::max(set.bodies[a].particleRadius, set.bodies[b].particleRadius);
-  } else if (hasI && (!hasJ || ni.dot(centre) >= nj.dot(centre))) {
-    n = ni;
+  } else if (hasI && (!hasJ || mi.dot(centre) >= mj.dot(centre))) {
+    m = mi;
     radius = set.bodies[a].particleRadius;
   } else {
-    n = nj;
+    m = mj;
     radius = set.bodies[b].particleRadius;
   }
-  // Over the face particle's patch (and, on i's side, within 60 degrees of the centre
-  // line); behind its middle only when it has just passed it.
-  const double along = n.dot(d);
+  const double along = m.dot(d);
   if (r * r - along * along > kFacePatch * kFacePatch * radius * radius) return;
-  if (along >= 0 ? along < 0.5 * r : !(n.dot(side) > 0)) return;
-  c.normal = n;
+  c.normal = m;
   c.depth = set.bodies[a].particleRadius + set.bodies[b].particleRadius - along;
 }
 

@@ -95,8 +95,7 @@ bool isClosed(const geometry::TriangleMesh& mesh) {
 // (a lid 0.2 thick at the default particle size 0.5 would otherwise hold no particle at
 // all, and fluids would fall through it), or a surface fill of an open mesh; at least one
 // particle.
-std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, double spacing, const Vec3& center) {
-  const bool closed = isClosed(scaled);
+std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, bool closed, double spacing, const Vec3& center) {
   const geometry::MeshFillResult r =
       geometry::fillMesh(scaled, {.spacing = spacing,
                                   .surfaceOnly = !closed,
@@ -206,10 +205,12 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     meshes.push_back(std::move(mesh));
     const double spacing = objectParticleSize(od, meshes.back());
     const Mass mass = massOf(od, scaled);
-    const std::vector<Vec3> points = bodyParticles(scaled, spacing, mass.center);
+    const bool closed = isClosed(scaled);
+    const std::vector<Vec3> points = bodyParticles(scaled, closed, spacing, mass.center);
     // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
     // particle inside a face, the next layer more than a particle.
-    const std::vector<Vec3> normals = geometry::flatSurfaceNormals(scaled, points, 0.8 * spacing, kFlatDegrees);
+    const geometry::FlatNormals faces =
+        geometry::flatSurfaceNormals(scaled, points, 0.8 * spacing, kFlatDegrees, closed);
 
     rigid::BodyInfo info;
     info.name = od.name;
@@ -236,9 +237,10 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
       set.ox.push_back(static_cast<float>(off.x()));
       set.oy.push_back(static_cast<float>(off.y()));
       set.oz.push_back(static_cast<float>(off.z()));
-      set.nx.push_back(static_cast<float>(normals[k].x()));
-      set.ny.push_back(static_cast<float>(normals[k].y()));
-      set.nz.push_back(static_cast<float>(normals[k].z()));
+      set.nx.push_back(static_cast<float>(faces.normal[k].x()));
+      set.ny.push_back(static_cast<float>(faces.normal[k].y()));
+      set.nz.push_back(static_cast<float>(faces.normal[k].z()));
+      set.faceSides.push_back(faces.sides[k]);
       store.add(0, 0, 0, 0, 0, 0, material, owner);  // placed from the body's state
     }
 
