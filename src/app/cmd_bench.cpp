@@ -243,8 +243,9 @@ CLI::App* addBenchCommand(CLI::App& root, BenchOptions& o) {
                      "a busy moment on a shared machine costs neither side")
       ->transform(wholeNumberIn(1, 100))
       ->capture_default_str();
-  lammps->add_option("--lammps", o.lammps, "LAMMPS binary (default: lmp on PATH)");
-  lammps->add_option("--keep", o.keep, "Keep the scenes, data files, inputs and logs in this folder");
+  lammps->add_option("--lammps", o.lammps, "LAMMPS binary (default: lmp on PATH)")->check(nonEmptyPath());
+  lammps->add_option("--keep", o.keep, "Keep the scenes, data files, inputs and logs in this folder")
+      ->check(nonEmptyPath());
   return bench;
 }
 

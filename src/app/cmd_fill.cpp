@@ -22,9 +22,10 @@ namespace softsub::app {
 CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
   CLI::App* cmd = root.add_subcommand(
       "fill", "Fill a mesh with particles (the seed's 'convert to particles'): a PLY point cloud or a <Fluid> block");
-  cmd->add_option("MESH", o.mesh, "Mesh file (OBJ, PLY, STL, glTF, FBX)")->required();
+  cmd->add_option("MESH", o.mesh, "Mesh file (OBJ, PLY, STL, glTF, FBX)")->required()->check(nonEmptyPath(false));
   cmd->add_option("--spacing", o.spacing, "Lattice step = particle diameter, scene units (> 0)")->required();
-  auto* out = cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this file");
+  auto* out = cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this file")
+                   ->check(nonEmptyPath());
   cmd->add_flag("--scene-snippet", o.sceneSnippet,
                 "Print a <Fluid> block with the particles to paste into a .scene (the default without --out)")
       ->excludes(out);

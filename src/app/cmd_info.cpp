@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "number_checks.h"
 
 namespace softsub::app {
 
@@ -16,7 +17,8 @@ CLI::App* addInfoCommand(CLI::App& root, InfoOptions& o) {
   info->add_option("FILE", o.file,
                    "A .scene, .sim, .pdc, .ply, .manifest or .state file (the extension says which), or an "
                    "output folder: which frames are complete and where --resume would continue")
-      ->required();
+      ->required()
+      ->check(nonEmptyPath(false));
   return info;
 }
 

@@ -9,6 +9,7 @@
 
 #include "cache/frame_writer.h"
 #include "core/error.h"
+#include "number_checks.h"
 #include "progress.h"
 #include "surface_options.h"
 #include "session/playback.h"
@@ -20,7 +21,9 @@ namespace softsub::app {
 CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
   CLI::App* mesh = root.add_subcommand(
       "mesh", "Write the fluids' surfaces (mesh/*.obj, vdb/*.vdb) of a recorded folder");
-  mesh->add_option("SIMDIR", o.folder, "The recorded folder (<scene>Sim) or one of its .sim files")->required();
+  mesh->add_option("SIMDIR", o.folder, "The recorded folder (<scene>Sim) or one of its .sim files")
+      ->required()
+      ->check(nonEmptyPath(false));
   mesh->add_option("--formats", o.formats, "Surface formats: mesh, vdb or mesh,vdb")->capture_default_str();
   addSurfaceOptions(mesh, o.surface, "");
   mesh->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");

@@ -166,8 +166,9 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
   CLI::App* cmd = root.add_subcommand(
       "render", "Draw a scene's frames (simulated on the way) or a recorded folder's frames into PNG pictures, "
                 "off-screen (no display or GPU needed)");
-  cmd->add_option("INPUT", o.input, ".scene file or recorded <scene>Sim folder (default: the embedded default scene)");
-  cmd->add_option("--out", o.out, "Folder for the pictures <scene>.NNNN.png")->required();
+  cmd->add_option("INPUT", o.input, ".scene file or recorded <scene>Sim folder (default: the embedded default scene)")
+      ->check(nonEmptyPath());
+  cmd->add_option("--out", o.out, "Folder for the pictures <scene>.NNNN.png")->required()->check(nonEmptyPath(false));
   cmd->add_option("--width", o.width, "Picture width in pixels, 16 to 16384")
       ->transform(wholeNumberIn(16, 16384))
       ->capture_default_str();

@@ -155,13 +155,13 @@ std::string folderText(const std::filesystem::path& dir) {
 CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   CLI::App* run = root.add_subcommand(
       "run", "Simulate a scene into frame caches (the embedded default scene when SCENE is omitted)");
-  run->add_option("SCENE,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)");
+  run->add_option("SCENE,-f,--scene", o.scene, ".scene file to simulate (seed: -f FILE)")->check(nonEmptyPath());
   run->add_option("--frames", o.frames, "Frames to simulate (overrides <Simulation><Frames>)")
       ->transform(wholeNumberIn(0, 1000000));
   run->add_option("--substeps", o.substeps,
                   "Updates per frame (overrides <Simulation><Substeps>; seed: -updateNum N)")
       ->transform(wholeNumberIn(1, 10000));
-  run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)");
+  run->add_option("--out", o.out, "Output folder (default: <sceneDir>/<sceneName>Sim)")->check(nonEmptyPath());
   run->add_option("--formats", o.formats, "Cache formats: sim,pdc,ply,mesh,vdb (any of them), all (sim,pdc,ply) or none; mesh and vdb are fluid surfaces (slow)")
       ->capture_default_str();
   addSurfaceOptions(run, o.surface, "; for mesh and vdb");

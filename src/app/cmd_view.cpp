@@ -16,11 +16,13 @@ CLI::App* addViewCommand(CLI::App& root, ViewOptions& o) {
       "view", "Open a window that simulates a scene live, with every parameter tweakable while it runs, or plays "
               "back a recorded <scene>Sim folder (press H in the window for the keys)");
   cmd->add_option("INPUT,-f,--scene", o.input,
-                  ".scene file or recorded folder (default: the embedded default scene; seed: -f FILE)");
+                  ".scene file or recorded folder (default: the embedded default scene; seed: -f FILE)")
+      ->check(nonEmptyPath());
   cmd->add_option("--substeps", o.substeps,
                   "Overrides <Simulation><Substeps> (a scene only; seed: -updateNum N)")
       ->transform(wholeNumberIn(1, 10000));
-  cmd->add_option("--out", o.out, "Where S writes the recorded frames (default: <sceneDir>/<sceneName>Sim)");
+  cmd->add_option("--out", o.out, "Where S writes the recorded frames (default: <sceneDir>/<sceneName>Sim)")
+      ->check(nonEmptyPath());
   cmd->add_option("--script", o.script,
                   "Scripted input, one command a line: set fluid NAME TAG VALUE, set simulation TAG VALUE, "
                   "key K, frames N, wait N, save FILE.scene, screenshot FILE.png, quit (docs/cli.md)");

@@ -78,4 +78,14 @@ CLI::Validator particleCap() {
                        fmt::format("a whole number in [1, {}]", std::numeric_limits<std::int64_t>::max()));
 }
 
+CLI::Validator nonEmptyPath(bool optional) {
+  return CLI::Validator(
+      [optional](std::string& value) {
+        if (!value.empty()) return std::string();
+        return std::string("an empty name is no file or folder") +
+               (optional ? " (leave the option out for its default)" : "");
+      },
+      "PATH");
+}
+
 }  // namespace softsub::app

@@ -1,6 +1,7 @@
 #pragma once
-/// Command-line checks for floating-point options. CLI11's Range and NonNegativeNumber
-/// compare with < and >, which NaN passes; these refuse NaN and the infinities too.
+/// Command-line checks for options. CLI11's Range and NonNegativeNumber compare with <
+/// and >, which NaN passes; these refuse NaN and the infinities too. And a path given as
+/// an empty string is refused, not read as "not given".
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -33,5 +34,10 @@ namespace softsub::app {
 /// 9223372036854775807])", not CLI::PositiveNumber's range up to the largest double
 /// written out in 309 digits).
 [[nodiscard]] CLI::Validator particleCap();
+
+/// A file or folder name that is not empty: `run ""` ran the default scene and
+/// `--out ""` wrote to the default folder, as if the option had been left out.
+/// `optional`: the option has a default, which the error then points to.
+[[nodiscard]] CLI::Validator nonEmptyPath(bool optional = true);
 
 }  // namespace softsub::app

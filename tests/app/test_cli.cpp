@@ -73,6 +73,26 @@ TEST(Cli, BadUsageExitsTwoWithAnErrorLineAndWritesNothing) {
   }
 }
 
+// An empty name is refused by every command that takes a file or folder, in the
+// option's words: `run ""` ran the embedded default scene and `run --out "" SCENE` wrote
+// into the scene's default folder, both with exit code 0.
+TEST(Cli, AnEmptyFileOrFolderNameIsRefusedNotTakenForTheDefault) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const std::string s = quote(scene);
+  const std::string cases[] = {"run ''",          "run --out '' " + s,   "-f ''",
+                               "render ''",       "render --out '' " + s, "view ''",
+                               "fill '' --spacing 1", "fill " + s + " --spacing 1 --out ''", "mesh ''",
+                               "info ''",         "bench lammps --keep ''", "bench lammps --lammps ''"};
+  for (const std::string& args : cases) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    EXPECT_EQ(r.code, 2) << "softsub " << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("an empty name is no file or folder"), std::string::npos) << "softsub " << args << "\n"
+                                                                                   << r.err;
+    EXPECT_EQ(listEntries(tmp.path()), std::vector<std::string>{"two-fluids.scene"}) << args;
+  }
+}
+
 TEST(Cli, TwoScenesAreRefused) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
