@@ -387,6 +387,7 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     return allowed(file) ? DefaultIOSystem::Open(file, mode) : nullptr;
   }
+  /// The refused paths, each quoted (and where a link took it).
   [[nodiscard]] const std::vector<std::string>& refused() const { return refused_; }
 
  private:
@@ -395,7 +396,18 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
     const fs::path target = fs::weakly_canonical(fs::path(file), ec);
     const fs::path rel = ec ? fs::path() : target.lexically_relative(root_);
     if (!rel.empty() && *rel.begin() != ".." && rel != ".") return true;
-    const std::string shown = fs::path(file).lexically_normal().string();
+    // Only files that are there are named: assimp also probes names of its own making
+    // (a material library's name cut short, the folder itself) that no one wrote.
+    const fs::path given = fs::path(file).lexically_normal();
+    std::error_code missing;
+    if (!fs::is_regular_file(given, missing)) return false;
+    // Quoted; with where it leads when a symbolic link takes it there (the name alone,
+    // inside the folder, looks allowed).
+    std::error_code absent;
+    const fs::path plain = fs::absolute(given, absent).lexically_normal();
+    const std::string shown = !ec && !absent && plain != target
+                                  ? fmt::format("'{}' (a link to '{}')", given.string(), target.string())
+                                  : fmt::format("'{}'", given.string());
     if (std::find(refused_.begin(), refused_.end(), shown) == refused_.end()) refused_.push_back(shown);
     return false;
   }
@@ -458,7 +470,7 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report, const fs::pa
     // A refusal is named first (it is the likely cause), with assimp's own words after it.
     if (confined != nullptr && !confined->refused().empty())
       return InputError({name, 0, "mesh"},
-                        fmt::format("the mesh refers to '{}', outside the scene's folder '{}' (a scene reads "
+                        fmt::format("the mesh refers to {}, outside the scene's folder '{}' (a scene reads "
                                     "files only inside its folder; assimp: {})",
                                     confined->refused().front(), confineTo.string(),
                                     importer.GetErrorString()[0] != '\0' ? importer.GetErrorString() : "no reason given"),
@@ -485,11 +497,18 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report, const fs::pa
   }
   TriangleMesh out = builder.finish(report);
   if (report != nullptr && confined != nullptr && !confined->refused().empty()) {
-    const std::size_t more = confined->refused().size() - 1;
+    // Each refused path named (the first few): each is a file to move into the folder.
+    const std::vector<std::string>& refused = confined->refused();
+    std::string names;
+    const std::size_t shown = std::min<std::size_t>(refused.size(), 4);
+    for (std::size_t k = 0; k < shown; ++k)
+      names += fmt::format("{}{}", k == 0 ? "" : k + 1 == shown && shown == refused.size() ? " and " : ", ",
+                           refused[k]);
+    if (shown < refused.size()) names += fmt::format(" and {} more", refused.size() - shown);
     report->warnings.push_back(fmt::format(
-        "did not read '{}'{}, which the mesh refers to: outside the scene's folder (a scene reads files only "
+        "did not read {}, which the mesh refers to: outside the scene's folder (a scene reads files only "
         "inside its folder)",
-        confined->refused().front(), more > 0 ? fmt::format(" (nor {} other path(s))", more) : std::string()));
+        names));
   }
   return out;
 }

@@ -555,8 +555,11 @@ class SceneReader {
     try {
       mesh = geometry::loadMesh(target, &report, base);
     } catch (const InputError& e) {
+      // The loader's own "allowed" says what would fix its refusal (a glTF's buffers
+      // inside the folder, finite coordinates, ...); the generic one only when it has none.
       cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.problem()),
-               "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");
+               e.allowed().empty() ? "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)"
+                                   : e.allowed());
     } catch (const IoError& e) {
       cx_.fail(line, element, fmt::format("cannot use the mesh {}: {}", quote(file), e.what()),
                "a readable mesh file with at least one triangle (OBJ, PLY, STL, glTF, FBX...)");

@@ -164,8 +164,22 @@ TEST(MeshFill, FilesAMeshRefersToMustLieInTheSceneFolderToo) {
   EXPECT_NE(e.problem().find("refers to '" + (tmp.path() / "outside.bin").string() + "', outside the scene's folder"),
             std::string::npos)
       << e.what();
+  // What is allowed is the loader's: what would fix the refusal, not "a readable mesh".
+  EXPECT_NE(e.allowed().find("lie in the scene's folder too"), std::string::npos) << e.what();
   const SceneDesc in = readSceneFile((tmp.path() / "scene/in.scene").string());
   EXPECT_EQ(compile(in).state.particles.size(), 64U);  // a 2 x 2 x 2 cube at spacing 0.5
+
+  // A buffer inside the folder that is a link to one outside: named with where it leads.
+  std::error_code ec;
+  fs::create_symlink(tmp.path() / "outside.bin", tmp.path() / "scene/geo/link.bin", ec);
+  if (!ec) {
+    writeText(tmp.path() / "scene/geo/link.gltf", gltfCube("link.bin"));
+    writeText(tmp.path() / "scene/link.scene", meshScene("geo/link.gltf", 0.5));
+    const InputError l = readFileError(tmp.path() / "scene/link.scene");
+    EXPECT_NE(l.problem().find("link.bin' (a link to '" + (tmp.path() / "outside.bin").string() + "')"),
+              std::string::npos)
+        << l.what();
+  }
 
   writeText(tmp.path() / "scene/geo/cube.obj", "mtllib ../../outside.mtl\n" + boxObj(1.0));
   writeText(tmp.path() / "outside.mtl", "newmtl a\nKd 1 0 0\n");
@@ -177,6 +191,16 @@ TEST(MeshFill, FilesAMeshRefersToMustLieInTheSceneFolderToo) {
   EXPECT_NE(report.warnings.back().find("did not read '" + (tmp.path() / "outside.mtl").string() + "'"),
             std::string::npos)
       << report.warnings.back();
+  // Two refused files: both named.
+  writeText(tmp.path() / "scene/geo/two.obj", "mtllib ../../outside.mtl\nmtllib ../../other.mtl\n" + boxObj(1.0));
+  writeText(tmp.path() / "other.mtl", "newmtl b\nKd 0 1 0\n");
+  geometry::MeshLoadReport two;
+  (void)geometry::loadMesh(tmp.path() / "scene/geo/two.obj", &two, tmp.path() / "scene");
+  ASSERT_FALSE(two.warnings.empty());
+  EXPECT_NE(two.warnings.back().find("'" + (tmp.path() / "outside.mtl").string() + "' and '" +
+                                     (tmp.path() / "other.mtl").string() + "'"),
+            std::string::npos)
+      << two.warnings.back();
   // Without a folder to keep to (softsub fill's own mesh), everything is read.
   geometry::MeshLoadReport free;
   (void)geometry::loadMesh(tmp.path() / "scene/geo/cube.obj", &free);
