@@ -491,11 +491,9 @@ std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, 
   return out;
 }
 
-FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points, double radius,
-                               double toleranceDegrees, bool closed) {
-  FlatNormals out;
-  out.normal.assign(points.size(), Vec3::Zero());
-  out.sides.assign(points.size(), 0);
+std::vector<SurfaceFaces> surfaceFaces(const TriangleMesh& mesh, const std::vector<Vec3>& points, double radius,
+                                       double toleranceDegrees, bool closed) {
+  std::vector<SurfaceFaces> out(points.size());
   if (points.empty() || mesh.triangles.empty() || !(radius > 0) || !std::isfinite(radius)) return out;
   // Triangles bucketed by the cubes of side `radius` their box overlaps: the triangles
   // within `radius` of a point lie in the 27 cubes around the point's own.
@@ -533,17 +531,23 @@ FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>
   }
   const double outward = closed && volume != 0 ? (volume > 0 ? 1.0 : -1.0) : 0.0;
   const double cosTolerance = std::cos(toleranceDegrees * std::numbers::pi / 180.0);
+  const double cosEdge = std::cos(30 * std::numbers::pi / 180.0);  // planes meeting at less are a curve
   const double radius2 = radius * radius;
+  struct Plane {
+    Vec first, nearest;
+    double nearest2 = 0;
+    bool bothWays = false;
+  };
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec p = points[i];
     if (!p.allFinite()) continue;
     const long cx = cube(p, 0), cy = cube(p, 1), cz = cube(p, 2);
-    double nearest2 = radius2;
-    Vec normal = Vec::Zero(), first = Vec::Zero();
-    bool bent = false, any = false, bothWays = false;
-    for (long z = cz - 1; z <= cz + 1 && !bent; ++z)
-      for (long y = cy - 1; y <= cy + 1 && !bent; ++y)
-        for (long x = cx - 1; x <= cx + 1 && !bent; ++x) {
+    std::array<Plane, SurfaceFaces::kMax> planes;
+    int count = 0;
+    bool curved = false;
+    for (long z = cz - 1; z <= cz + 1 && !curved; ++z)
+      for (long y = cy - 1; y <= cy + 1 && !curved; ++y)
+        for (long x = cx - 1; x <= cx + 1 && !curved; ++x) {
           const auto found = cubes.find(key(x, y, z));
           if (found == cubes.end()) continue;
           for (const std::uint32_t t : found->second) {
@@ -551,24 +555,34 @@ FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>
             const Vec a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
             const double d2 = (triangleClosestPoint(p, a, b, c, (b - a).cross(c - a)) - p).squaredNorm();
             if (d2 > radius2) continue;
-            if (!any) first = unit[t];
-            const double cosine = unit[t].dot(first);
-            if (std::abs(cosine) < cosTolerance) {
-              bent = true;
-              break;
+            int g = 0;
+            while (g < count && std::abs(unit[t].dot(planes[g].first)) < cosTolerance) ++g;
+            if (g == count) {
+              if (count == SurfaceFaces::kMax) {
+                curved = true;
+                break;
+              }
+              planes[count++] = {unit[t], unit[t], d2, false};
+              continue;
             }
-            bothWays = bothWays || cosine < 0;
-            if (!any || d2 < nearest2) {
-              nearest2 = d2;
-              normal = unit[t];
+            Plane& plane = planes[g];
+            plane.bothWays = plane.bothWays || unit[t].dot(plane.first) < 0;
+            if (d2 < plane.nearest2) {
+              plane.nearest2 = d2;
+              plane.nearest = unit[t];
             }
-            any = true;
           }
         }
-    if (!any || bent) continue;
-    const bool oneWay = outward != 0 && !bothWays;
-    out.normal[i] = oneWay ? Vec(outward * normal) : normal;
-    out.sides[i] = oneWay ? 1 : 2;
+    for (int g = 0; g < count && !curved; ++g)
+      for (int h = g + 1; h < count; ++h) curved = curved || std::abs(planes[g].first.dot(planes[h].first)) > cosEdge;
+    if (curved) continue;
+    SurfaceFaces& faces = out[i];
+    faces.count = static_cast<std::uint8_t>(count);
+    for (int g = 0; g < count; ++g) {
+      const bool oneWay = outward != 0 && !planes[g].bothWays;
+      faces.normal[g] = oneWay ? Vec(outward * planes[g].nearest) : planes[g].nearest;
+      faces.sides[g] = oneWay ? 1 : 2;
+    }
   }
   return out;
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// Mesh → particles (the seed's "convert to particles", report 2.2.3): lattice points of a
 /// voxel grid of the particle diameter, inside a mesh by ray parity, or on its surface.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,24 +55,29 @@ namespace softsub::geometry {
 /// keeps only its shell: interior particles never touch anything. Order is kept.
 [[nodiscard]] std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers);
 
-/// Where a mesh is flat around each of some points (the particles of a rigid body).
-struct FlatNormals {
-  /// Per point: the unit normal of the triangle nearest it when every triangle within the
-  /// radius lies in a plane within the tolerance of that one; zero where no triangle is
-  /// within the radius or the triangles bend away (an edge, a corner, a curve coarser
-  /// than the tolerance).
-  std::vector<Vec3> normal;
-  /// Per point: 0 not flat; 1 the normal points out of the solid (a closed mesh, the
-  /// triangles near the point all facing one way); 2 either way (a part thin enough that
-  /// both of its faces are near the point, or an open mesh, which has no inside).
-  std::vector<std::uint8_t> sides;
+/// The flat faces of a mesh near one point (a particle of a rigid body): none where the
+/// mesh is curved there (or far), one under a face, two at an edge, three at a corner.
+struct SurfaceFaces {
+  static constexpr int kMax = 3;
+  /// Unit normals, the nearest triangle's of each face.
+  std::array<Vec3, kMax> normal{};
+  /// Per face: 1 the normal points out of the solid (a closed mesh, the face's triangles
+  /// near the point all facing one way); 2 either way (a part thin enough that both of
+  /// its sides are near the point, or an open mesh, which has no inside).
+  std::array<std::uint8_t, kMax> sides{};
+  std::uint8_t count = 0;
 };
 
-/// The flat faces near `points` (FlatNormals). `closed`: the mesh is closed and wound
-/// consistently (meshMassProperties accepts it), so its triangles' winding tells outside
-/// from inside (either winding: the sign of its volume says which). Zero-area triangles
-/// are skipped.
-[[nodiscard]] FlatNormals flatSurfaceNormals(const TriangleMesh& mesh, const std::vector<Vec3>& points,
-                                             double radius, double toleranceDegrees, bool closed);
+/// The flat faces within `radius` of each point: the triangles within `radius` fall into
+/// at most three planes, each within `toleranceDegrees` of its first triangle (either
+/// sense: a thin plate's two sides are one plane), and the planes meet at 30 degrees or
+/// more (an edge, a corner). Otherwise (more planes, or planes meeting at a shallow angle:
+/// a curved surface's facets, a primitive sphere's 11.25 degree segments) or with no
+/// triangle within `radius`, the point has none. `closed`: the mesh is closed and wound
+/// consistently (meshMassProperties accepts it), so its winding tells outside from
+/// inside (either winding: the sign of its volume says which). Zero-area triangles are
+/// skipped.
+[[nodiscard]] std::vector<SurfaceFaces> surfaceFaces(const TriangleMesh& mesh, const std::vector<Vec3>& points,
+                                                     double radius, double toleranceDegrees, bool closed);
 
 }  // namespace softsub::geometry

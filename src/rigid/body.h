@@ -3,6 +3,7 @@
 /// Model), its pose and momenta (BodyState, in the State), and the body-space offsets of
 /// its particles (BodySet). A body's particles live in the one ParticleStore with the
 /// fluids; their positions and velocities there are written from the body's state.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,15 @@ struct BodyState {
 /// (world axes): R = Rz * Ry * Rx.
 [[nodiscard]] Quat rotationFromEulerDegrees(const Vec3& degrees);
 
+/// The flat faces one body particle lies under, body space (BodySet::faces).
+struct BodyFaces {
+  std::array<std::array<float, 3>, 3> normal{};  ///< unit
+  /// Per face: 1 the normal points out of the body; 2 it may point either way (a thin
+  /// part's particles lie under both of its sides).
+  std::array<std::uint8_t, 3> sides{};
+  std::uint8_t count = 0;
+};
+
 /// Every body's constant data plus its particles' body-space offsets.
 struct BodySet {
   std::vector<BodyInfo> bodies;
@@ -61,14 +71,12 @@ struct BodySet {
   std::uint32_t firstId = 0;      ///< lowest particle id of any body (bodies' ids are contiguous)
   /// Body-space offset of particle id (firstId + k) from its body's centre of mass.
   std::vector<float> ox, oy, oz;
-  /// Body space: the unit normal of the flat face that particle id (firstId + k) lies
-  /// under (geometry::flatSurfaceNormals), or zero (an edge, a corner, a curve, the
-  /// inside). Contacts take a flat face's normal instead of the line between particle
-  /// centres, which tilts wherever two lattices do not line up. faceSides: 0 no face, 1
-  /// the normal points out of the body, 2 it may point either way (a thin part's
-  /// particles lie under both of its faces).
-  std::vector<float> nx, ny, nz;
-  std::vector<std::uint8_t> faceSides;
+  /// Per particle id (firstId + k): the flat faces of the body's mesh it lies under
+  /// (geometry::surfaceFaces, body space): one under a face, two at an edge, three at a
+  /// corner, none on a curved surface or inside. Contacts take a face's normal instead
+  /// of the line between particle centres, which leans wherever two lattices do not line
+  /// up. Empty: no particle has faces.
+  std::vector<BodyFaces> faces;
 
   [[nodiscard]] bool empty() const { return bodies.empty(); }
   /// Total body particles.

@@ -8,8 +8,8 @@ namespace softsub::rigid {
 
 namespace {
 
-// cos 8 degrees: two flat faces whose normals are this close to opposite meet face to face.
-constexpr double kFacesMeet = 0.99;
+// cos 3 degrees: two flat faces whose normals are this close to opposite meet face to face.
+constexpr double kFacesMeet = 0.9986;
 
 // Effective inverse mass of a contact along d: 1/ma + 1/mb + (ra x d) . Ia⁻¹ (ra x d) + (rb x d) . Ib⁻¹ (rb x d).
 double inverseMassAlong(double invMa, const Mat3& invIa, const Vec3& ra, double invMb, const Mat3& invIb,
@@ -67,57 +67,89 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
 }
 
 // Two particles of two bodies touch; the line between their centres is the contact
-// normal of two spheres, but where one of them lies under a flat face (BodySet::nx), the
-// face is what touches: the normal is the face's and the depth is measured along it, so
-// a box resting on a box does not rest on tilted normals where the two lattices do not
-// line up (a box dropped flat with its lattice 0.1 particles off its base's slid off
-// it: every normal leant the same way). Two faces that meet nearly opposite (within
-// about 8 degrees) share their bisector; otherwise the face normal nearer the centre
-// line is taken. A face holds the contact only where the other particle lies over that
-// face particle's patch (within kFacePatch radii of the normal through it); elsewhere,
-// past an edge, the centre line stays.
+// normal of two spheres, but where one of them lies under a flat face (BodySet::faces),
+// the face is what touches: the normal is the face's and the depth is measured along it,
+// so a box resting on a box does not rest on tilted normals where the two lattices do not
+// line up (a box dropped flat with its lattice 0.1 particles off its base's slid off it:
+// every normal leant the same way). An edge's or corner's particle lies under two or
+// three faces. Two faces that meet nearly opposite (within about 8 degrees), one of each
+// particle, share their bisector (two boxes' faces, or a box's bottom edge on its base's
+// top edge); otherwise the face normal nearest the centre line is taken. A face holds
+// the contact only where the other particle lies over that face particle's patch
+// (within kFacePatch radii of the normal through it); elsewhere, past an edge, the
+// centre line stays.
 //
-// Which way a face pushes: out of its body (faceSides 1), even for a particle already
-// past the face particle's middle. A thin part's face (2) pushes towards the side the
-// other particle is on, unless both where that particle was a substep ago and the other
-// body's centre are on the far side: then it has just been driven past the middle (a
-// fast ball onto a plate one particle thick) and goes back the way it came.
+// Which way a face pushes: out of its body (sides 1), even for a particle already past
+// the face particle's middle. A thin part's face (2) pushes towards the side the other
+// particle is on, unless both where that particle was a substep ago and the other body's
+// centre are on the far side: then it has just been driven past the middle (a fast ball
+// onto a plate one particle thick) and goes back the way it came.
 void RigidSolver::faceContact(const BodySet& set, const ParticleStore& s, std::uint32_t i, std::uint32_t a,
                               std::uint32_t j, std::uint32_t b, const Vec3& d, double r, double dt,
                               Contact& c) const {
-  if (set.faceSides.empty()) return;
+  if (set.faces.empty()) return;
+  const BodyFaces& fi = set.faces[s.id[i] - set.firstId];
+  const BodyFaces& fj = set.faces[s.id[j] - set.firstId];
+  if (fi.count == 0 && fj.count == 0) return;
   const Vec3 before = d - dt * Vec3(s.vx[i] - s.vx[j], s.vy[i] - s.vy[j], s.vz[i] - s.vz[j]);
-  // The contact normal (from j's side to i's) that the face of `slot` gives; `away`: from
-  // the other body's centre to the face particle's side, for a thin part.
-  const auto faceNormal = [&](std::uint32_t slot, std::uint32_t body, double sign, const Vec3& away, Vec3& m) {
-    const std::uint32_t k = s.id[slot] - set.firstId;
-    const std::uint8_t sides = set.faceSides[k];
-    if (sides == 0) return false;
-    m = sign * (rot_[body] * Vec3(set.nx[k], set.ny[k], set.nz[k]));
-    if (sides == 2) {
-      if (m.dot(d) < 0) m = -m;                                 // towards where i is
-      if (m.dot(before) < 0 && m.dot(away) < 0) m = -m;         // just driven past the middle
-    }
-    return true;
-  };
   const Vec3 xi(s.px[i], s.py[i], s.pz[i]), xj(s.px[j], s.py[j], s.pz[j]);
-  Vec3 mi, mj;
-  // i's face points out of a, towards j: the contact normal is its opposite.
-  const bool hasI = faceNormal(i, a, -1.0, xi - pos_[b], mi);
-  const bool hasJ = faceNormal(j, b, 1.0, pos_[a] - xj, mj);
-  if (!hasI && !hasJ) return;
+  // Contact normals (from j's side to i's) the faces give: i's face points out of a,
+  // towards j, so its normal is the opposite. `away`: from the other body's centre
+  // towards the face particle's side, for a thin part.
+  const auto normals = [&](const BodyFaces& f, std::uint32_t body, double sign, const Vec3& away,
+                           std::array<Vec3, 3>& m) {
+    for (int g = 0; g < f.count; ++g) {
+      m[g] = sign * (rot_[body] * Vec3(f.normal[g][0], f.normal[g][1], f.normal[g][2]));
+      if (f.sides[g] == 2) {
+        if (m[g].dot(d) < 0) m[g] = -m[g];                                 // towards where i is
+        if (m[g].dot(before) < 0 && m[g].dot(away) < 0) m[g] = -m[g];      // just driven past the middle
+      }
+    }
+  };
+  std::array<Vec3, 3> mi, mj;
+  normals(fi, a, -1.0, xi - pos_[b], mi);
+  normals(fj, b, 1.0, pos_[a] - xj, mj);
   const Vec3 centre = d / r;
-  Vec3 m;
-  double radius = 0;
-  if (hasI && hasJ && mi.dot(mj) > kFacesMeet) {
-    m = (mi + mj).normalized();
-    radius = std::max(set.bodies[a].particleRadius, set.bodies[b].particleRadius);
-  } else if (hasI && (!hasJ || mi.dot(centre) >= mj.dot(centre))) {
-    m = mi;
-    radius = set.bodies[a].particleRadius;
-  } else {
-    m = mj;
-    radius = set.bodies[b].particleRadius;
+  Vec3 m = Vec3::Zero();
+  double radius = 0, best = -2;
+  for (int p = 0; p < fi.count; ++p)
+    for (int q = 0; q < fj.count; ++q) {
+      if (!(mi[p].dot(mj[q]) > kFacesMeet)) continue;
+      const Vec3 bisector = (mi[p] + mj[q]).normalized();
+      if (bisector.dot(centre) > best) {
+        best = bisector.dot(centre);
+        m = bisector;
+        radius = std::max(set.bodies[a].particleRadius, set.bodies[b].particleRadius);
+      }
+    }
+  if (best == -2) {
+    // No two faces meet: a face against an edge, a corner or a curve takes the face's
+    // normal (a box landing on its edge is pushed straight up by the floor's face, not
+    // sideways by its own tilted bottom); two faces meeting at an angle, the one nearer
+    // the centre line; two edges, the normal of both edges; anything else, the centre line.
+    const auto pick = [&](const BodyFaces& f, const std::array<Vec3, 3>& n, double rad) {
+      for (int g = 0; g < f.count; ++g)
+        if (n[g].dot(centre) > best) {
+          best = n[g].dot(centre);
+          m = n[g];
+          radius = rad;
+        }
+    };
+    if (fi.count == 1 && fj.count != 1) {
+      pick(fi, mi, set.bodies[a].particleRadius);
+    } else if (fj.count == 1 && fi.count != 1) {
+      pick(fj, mj, set.bodies[b].particleRadius);
+    } else if (fi.count == 1 && fj.count == 1) {
+      pick(fi, mi, set.bodies[a].particleRadius);
+      pick(fj, mj, set.bodies[b].particleRadius);
+    } else if (fi.count == 2 && fj.count == 2) {
+      const Vec3 n = mi[0].cross(mi[1]).cross(mj[0].cross(mj[1]));
+      if (n.squaredNorm() < 1e-6) return;  // parallel edges: the centre line
+      m = n.dot(centre) < 0 ? Vec3(-n.normalized()) : Vec3(n.normalized());
+      radius = std::max(set.bodies[a].particleRadius, set.bodies[b].particleRadius);
+    } else {
+      return;
+    }
   }
   const double along = m.dot(d);
   if (r * r - along * along > kFacePatch * kFacePatch * radius * radius) return;

@@ -97,7 +97,7 @@ class RigidSolver {
                        const Walls* walls, double dt);
   /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,
   /// c.normal and c.depth those of two spheres): a flat face's normal and depth instead
-  /// where one lies under one (BodySet::nx).
+  /// where one lies under one (BodySet::faces).
   void faceContact(const BodySet& set, const ParticleStore& s, std::uint32_t i, std::uint32_t a, std::uint32_t j,
                    std::uint32_t b, const Vec3& d, double r, double dt, Contact& c) const;
   void reduceContacts();

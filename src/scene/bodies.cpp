@@ -209,8 +209,8 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     const std::vector<Vec3> points = bodyParticles(scaled, closed, spacing, mass.center);
     // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
     // particle inside a face, the next layer more than a particle.
-    const geometry::FlatNormals faces =
-        geometry::flatSurfaceNormals(scaled, points, 0.8 * spacing, kFlatDegrees, closed);
+    const std::vector<geometry::SurfaceFaces> faces =
+        geometry::surfaceFaces(scaled, points, 0.8 * spacing, kFlatDegrees, closed);
 
     rigid::BodyInfo info;
     info.name = od.name;
@@ -237,10 +237,13 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
       set.ox.push_back(static_cast<float>(off.x()));
       set.oy.push_back(static_cast<float>(off.y()));
       set.oz.push_back(static_cast<float>(off.z()));
-      set.nx.push_back(static_cast<float>(faces.normal[k].x()));
-      set.ny.push_back(static_cast<float>(faces.normal[k].y()));
-      set.nz.push_back(static_cast<float>(faces.normal[k].z()));
-      set.faceSides.push_back(faces.sides[k]);
+      rigid::BodyFaces f;
+      f.count = faces[k].count;
+      for (int g = 0; g < faces[k].count; ++g) {
+        for (int c = 0; c < 3; ++c) f.normal[g][c] = static_cast<float>(faces[k].normal[g][c]);
+        f.sides[g] = faces[k].sides[g];
+      }
+      set.faces.push_back(f);
       store.add(0, 0, 0, 0, 0, 0, material, owner);  // placed from the body's state
     }
 

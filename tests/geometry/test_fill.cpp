@@ -369,10 +369,10 @@ TEST(LatticeShell, KeepsTheOuterLayersOfACube) {
 }
 
 // A 2 x 1 x 3 box filled at 0.5 (4 x 2 x 6 lattice points, the outer layers a quarter
-// particle inside the faces), turned 30 degrees about z: a point on exactly one outer
-// layer lies under that face and gets its outward normal (turned with the box), whichever
-// way the mesh is wound; a point on two or three (an edge, a corner) gets none.
-TEST(FlatSurfaceNormals, AFacesPointsGetItsOutwardNormalAndEdgesAndCornersNone) {
+// particle inside the faces), turned 30 degrees about z: a point on k outer layers lies
+// under k faces (one on a face, two on an edge, three at a corner) and gets their outward
+// normals, turned with the box, whichever way the mesh is wound.
+TEST(SurfaceFaces, AFacesEdgesAndCornersPointsGetTheirFacesOutwardNormals) {
   const double s = 0.5, a = 30 * std::numbers::pi / 180;
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix();
   TriangleMesh box = boxMesh(Vec3(-1, -0.5, -1.5), Vec3(1, 0.5, 1.5));
@@ -388,53 +388,54 @@ TEST(FlatSurfaceNormals, AFacesPointsGetItsOutwardNormalAndEdgesAndCornersNone) 
   TriangleMesh insideOut = box;
   for (auto& t : insideOut.triangles) std::swap(t[1], t[2]);
   for (const TriangleMesh* mesh : {&box, &insideOut}) {
-    const FlatNormals faces = flatSurfaceNormals(*mesh, points, 0.8 * s, 5, true);
-    ASSERT_EQ(faces.normal.size(), points.size());
-    ASSERT_EQ(faces.sides.size(), points.size());
+    const std::vector<SurfaceFaces> faces = surfaceFaces(*mesh, points, 0.8 * s, 5, true);
+    ASSERT_EQ(faces.size(), points.size());
     const int last[3] = {3, 1, 5};
-    std::size_t onFaces = 0;
+    std::size_t counts[4] = {0, 0, 0, 0};
     for (std::size_t k = 0; k < points.size(); ++k) {
-      int outer = 0, axis = -1, sense = 0;
+      std::vector<Vec3> expected;
       for (int c = 0; c < 3; ++c)
-        if (index[k][c] == 0 || index[k][c] == last[c]) {
-          ++outer;
-          axis = c;
-          sense = index[k][c] == 0 ? -1 : 1;
-        }
-      // y has only two layers, both outer: every point is under the top or bottom face,
-      // and on an edge too when it is also on an outer layer of x or z.
-      if (outer == 1) {
-        ++onFaces;
-        EXPECT_EQ(faces.sides[k], 1) << "point " << k;
-        EXPECT_LT((faces.normal[k] - sense * (turn * Vec3::Unit(axis))).norm(), 1e-12) << "point " << k;
-      } else {
-        EXPECT_EQ(faces.sides[k], 0) << "point " << k << " lies on " << outer << " outer layers";
-        EXPECT_EQ(faces.normal[k], Vec3::Zero());
+        if (index[k][c] == 0 || index[k][c] == last[c])
+          expected.push_back((index[k][c] == 0 ? -1.0 : 1.0) * (turn * Vec3::Unit(c)));
+      // y has two layers, both outer: every point lies under the top or the bottom.
+      ASSERT_EQ(faces[k].count, expected.size()) << "point " << k;
+      ++counts[faces[k].count];
+      for (const Vec3& e : expected) {
+        bool found = false;
+        for (int g = 0; g < faces[k].count; ++g)
+          found = found || ((faces[k].normal[g] - e).norm() < 1e-12 && faces[k].sides[g] == 1);
+        EXPECT_TRUE(found) << "point " << k << ": no outward face " << e.transpose();
       }
     }
-    EXPECT_EQ(onFaces, 2U * 2 * 4);  // the 2 x 4 inner points of the top and of the bottom
+    EXPECT_EQ(counts[1], 2U * 2 * 4);  // the 2 x 4 inner points of the top and of the bottom
+    EXPECT_EQ(counts[3], 8U);          // the corners
+    EXPECT_EQ(counts[2], 48U - 16U - 8U);
   }
 }
 
-// A thin plate's middle layer lies under both faces, one plane: flat both ways. An open
-// mesh has no inside: flat both ways too. A primitive sphere (11.25 degrees a segment)
-// is flat nowhere at 5 degrees; a point far from every triangle gets no normal.
-TEST(FlatSurfaceNormals, AThinPlatesFacesAndAnOpenMeshPointBothWaysAndASphereIsFlatNowhere) {
+// A thin plate's middle layer lies under both sides, one plane: a face either way; at its
+// rim, that face and the rim's. An open mesh has no inside: its faces point either way. A
+// primitive sphere (11.25 degrees a segment) has no face at 5 degrees, nor at 15 (its
+// facets meet at less than 30 degrees: a curve, not an edge); a point far from every
+// triangle has none.
+TEST(SurfaceFaces, AThinPlatesSidesAndAnOpenMeshPointBothWaysAndASphereHasNone) {
   const TriangleMesh plate = boxMesh(Vec3(-3, -0.1, -3), Vec3(3, 0.1, 3));
-  const std::vector<Vec3> middle = {Vec3(0, 0, 0), Vec3(1.3, 0.05, -2.1), Vec3(2.9, 0, 0), Vec3(0, 2, 0),
+  const std::vector<Vec3> points = {Vec3(0, 0, 0), Vec3(1.3, 0.05, -2.1), Vec3(2.9, 0, 0), Vec3(0, 2, 0),
                                     Vec3(0, 0.35, 0)};
-  const FlatNormals n = flatSurfaceNormals(plate, middle, 0.4, 5, true);
-  EXPECT_NEAR(std::abs(n.normal[0].y()), 1.0, 1e-12);
-  EXPECT_EQ(n.sides[0], 2);
-  EXPECT_NEAR(std::abs(n.normal[1].y()), 1.0, 1e-12);
-  EXPECT_EQ(n.sides[1], 2);
-  EXPECT_EQ(n.sides[2], 0);  // 0.1 from the rim: the side face bends away
-  EXPECT_EQ(n.sides[3], 0);  // nothing within 0.4
-  EXPECT_EQ(n.sides[4], 1);  // only the top face within 0.4
-  EXPECT_NEAR(n.normal[4].y(), 1.0, 1e-12);
+  const std::vector<SurfaceFaces> f = surfaceFaces(plate, points, 0.4, 5, true);
+  for (int k : {0, 1}) {
+    ASSERT_EQ(f[k].count, 1) << k;
+    EXPECT_NEAR(std::abs(f[k].normal[0].y()), 1.0, 1e-12);
+    EXPECT_EQ(f[k].sides[0], 2);
+  }
+  ASSERT_EQ(f[2].count, 2);  // 0.1 from the rim: the plate's sides and the rim's face
+  EXPECT_EQ(f[3].count, 0);  // nothing within 0.4
+  ASSERT_EQ(f[4].count, 1);  // only the top side within 0.4: out of the plate
+  EXPECT_EQ(f[4].sides[0], 1);
+  EXPECT_NEAR(f[4].normal[0].y(), 1.0, 1e-12);
   TriangleMesh open = plate;
   open.triangles.resize(open.triangles.size() - 2);  // one face fewer
-  EXPECT_EQ(flatSurfaceNormals(open, middle, 0.4, 5, false).sides[4], 2);
+  EXPECT_EQ(surfaceFaces(open, points, 0.4, 5, false)[4].sides[0], 2);
 
   const TriangleMesh ball = sphereMesh(Vec3::Zero(), 2.0, 16, 32);
   std::vector<Vec3> shell;
@@ -442,16 +443,17 @@ TEST(FlatSurfaceNormals, AThinPlatesFacesAndAnOpenMeshPointBothWaysAndASphereIsF
     const double t = 0.1 + 2.9 * k / 200.0, p = 2.399963 * k;  // a spiral over the sphere
     shell.push_back(1.8 * Vec3(std::sin(t) * std::cos(p), std::cos(t), std::sin(t) * std::sin(p)));
   }
-  for (const std::uint8_t sides : flatSurfaceNormals(ball, shell, 0.4, 5, true).sides) EXPECT_EQ(sides, 0);
-  // At 15 degrees the same points see one facet or two neighbours: each normal then
-  // points out, within 15 degrees of the sphere's own there.
-  const FlatNormals coarse = flatSurfaceNormals(ball, shell, 0.4, 15, true);
+  for (const SurfaceFaces& g : surfaceFaces(ball, shell, 0.4, 5, true)) EXPECT_EQ(g.count, 0);
+  // At 15 degrees neighbouring facets are one face: where a point sees only those, it
+  // gets one, pointing out within 15 degrees of the sphere's own normal there.
+  const std::vector<SurfaceFaces> coarse = surfaceFaces(ball, shell, 0.4, 15, true);
   std::size_t flat = 0;
   for (std::size_t k = 0; k < shell.size(); ++k) {
-    if (coarse.sides[k] == 0) continue;
+    EXPECT_LE(coarse[k].count, 1);
+    if (coarse[k].count != 1) continue;
     ++flat;
-    EXPECT_EQ(coarse.sides[k], 1);
-    EXPECT_GT(coarse.normal[k].dot(shell[k].normalized()), std::cos(15 * std::numbers::pi / 180));
+    EXPECT_EQ(coarse[k].sides[0], 1);
+    EXPECT_GT(coarse[k].normal[0].dot(shell[k].normalized()), std::cos(15 * std::numbers::pi / 180));
   }
   EXPECT_GT(flat, 0U);
 }
