@@ -285,6 +285,26 @@ TEST(BodyScenes, AStackOfThreeBoxesSettlesIntoItsHollowsAndStands) {
   }
 }
 
+// A 2 x 1 x 2 box (mass 5, particle size 0.5) dropped flat from `top` onto a box of
+// size `base` and mass `baseMass` standing on the floor (friction 0.1): where the two are
+// after `frames` frames, and how far the upper one turned (radians).
+struct Drop {
+  Vec3 base, top;
+  double turn = 0;
+};
+Drop dropBoxOnBox(const std::vector<double>& base, double baseMass, const Vec3& top, int frames) {
+  scene::SceneDesc d = floorScene(0.5, 0.1);
+  d.simulation.frames = frames;
+  scene::ObjectDesc lower = primitiveObject("base", ObjectShape::Box, base, 0.5, Vec3(0, 0.5 * base.at(1), 0));
+  lower.mass = baseMass;
+  scene::ObjectDesc upper = primitiveObject("top", ObjectShape::Box, {2, 1, 2}, 0.5, top);
+  upper.mass = 5;
+  d.objects = {lower, upper};
+  BodyRun run(d);
+  for (int f = 0; f < frames; ++f) run.sim->advanceFrame();
+  return {run.body(0).position, run.body(1).position, Eigen::AngleAxisd(run.body(1).orientation).angle()};
+}
+
 // A box dropped flat onto a wider one lands with its lattice off the lower one's by
 // whatever its position makes it. Each of its particles touches a face, so the contact
 // normals are the face's whatever the offset: it stays where it landed, flat, at the
@@ -292,26 +312,15 @@ TEST(BodyScenes, AStackOfThreeBoxesSettlesIntoItsHollowsAndStands) {
 // centres, every one leant the same way, and at friction 0.1 the box slid 0.65 to 1.5
 // units off its mark.)
 TEST(BodyScenes, ABoxDroppedFlatOnABoxStaysWhereItLandsWhateverTheLatticeOffset) {
-  const auto landed = [](const Vec3& offset) {
-    scene::SceneDesc d = floorScene(0.5, 0.1);
-    d.simulation.frames = 72;
-    scene::ObjectDesc base = primitiveObject("base", ObjectShape::Box, {4, 2, 4}, 0.5, Vec3(0, 1, 0));
-    base.mass = 40;
-    scene::ObjectDesc top = primitiveObject("top", ObjectShape::Box, {2, 1, 2}, 0.5, Vec3(0, 4, 0) + offset);
-    top.mass = 5;
-    d.objects = {base, top};
-    BodyRun run(d);
-    for (int f = 0; f < 72; ++f) run.sim->advanceFrame();
-    return std::pair{run.body(1).position, Eigen::AngleAxisd(run.body(1).orientation).angle()};
-  };
-  const auto [aligned, alignedTurn] = landed(Vec3::Zero());
-  EXPECT_LT(alignedTurn, 1e-4);
+  const Drop aligned = dropBoxOnBox({4, 2, 4}, 40, Vec3(0, 4, 0), 72);
+  EXPECT_LT(aligned.turn, 1e-4);
   for (const Vec3& offset : {Vec3(0.1, 0, 0), Vec3(0.3, 0, 0), Vec3(0.6, 0, 0.15)}) {
-    const auto [at, turn] = landed(offset);
+    const Drop drop = dropBoxOnBox({4, 2, 4}, 40, Vec3(0, 4, 0) + offset, 72);
+    const Vec3& at = drop.top;
     EXPECT_LT((Vec3(at.x(), 0, at.z()) - offset).norm(), 0.005) << "offset " << offset.transpose() << ": at "
                                                                  << at.transpose();
-    EXPECT_NEAR(at.y(), aligned.y(), 0.005) << "offset " << offset.transpose();
-    EXPECT_LT(turn, 0.002) << "offset " << offset.transpose();  // radians
+    EXPECT_NEAR(at.y(), aligned.top.y(), 0.005) << "offset " << offset.transpose();
+    EXPECT_LT(drop.turn, 0.002) << "offset " << offset.transpose();
   }
 }
 
@@ -325,20 +334,12 @@ TEST(BodyScenes, ABoxDroppedFlatOnABoxStaysWhereItLandsWhateverTheLatticeOffset)
 TEST(BodyScenes, ABoxDroppedOnABoxOfItsOwnSizeStaysOnIt) {
   for (const Vec3& offset : {Vec3(0.1, 0, 0), Vec3(0.05, 0, 0), Vec3(-0.15, 0, 0.1), Vec3(0.2, 0, 0.05),
                              Vec3(0.3, 0, 0.2)}) {
-    scene::SceneDesc d = floorScene(0.5, 0.1);
-    d.simulation.frames = 96;
-    scene::ObjectDesc bottom = primitiveObject("bottom", ObjectShape::Box, {2, 1, 2}, 0.5, Vec3(0, 0.5, 0));
-    bottom.mass = 5;
-    scene::ObjectDesc top = primitiveObject("top", ObjectShape::Box, {2, 1, 2}, 0.5, Vec3(0, 3, 0) + offset);
-    top.mass = 5;
-    d.objects = {bottom, top};
-    BodyRun run(d);
-    for (int f = 0; f < 96; ++f) run.sim->advanceFrame();
-    const Vec3 at = run.body(1).position - run.body(0).position;
+    const Drop drop = dropBoxOnBox({2, 1, 2}, 5, Vec3(0, 3, 0) + offset, 96);
+    const Vec3 at = drop.top - drop.base;
     EXPECT_LT((Vec3(at.x(), 0, at.z()) - offset).norm(), 0.5) << "offset " << offset.transpose() << ": at "
                                                                << at.transpose();
     EXPECT_NEAR(at.y(), 1.0, 0.02) << "offset " << offset.transpose();  // resting on it
-    EXPECT_LT(Eigen::AngleAxisd(run.body(1).orientation).angle(), 0.035) << "offset " << offset.transpose();
+    EXPECT_LT(drop.turn, 0.035) << "offset " << offset.transpose();
   }
 }
 
