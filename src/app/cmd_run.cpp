@@ -334,10 +334,33 @@ int runCommand(const RunOptions& o) {
   hooks.recordUpTo = o.stopRecordingAt;
   hooks.emitInitial = resumed.frame < 0;
   int fewestSubsteps = std::numeric_limits<int>::max(), mostSubsteps = 0;
+  // Once a run: an object moving more than its particles' diameter in a substep can pass
+  // into or through a part of another object one particle thick (contacts see overlaps,
+  // not paths), and nothing else would say so.
+  bool warnedFast = o.quiet;
+  const auto warnIfFast = [&](std::int64_t frame) {
+    // --adaptive chooses each frame's substeps from the speeds (a quarter of the contact
+    // reach a substep): only its ceiling leaves an object this fast.
+    if (warnedFast || (o.adaptive && sim.substeps() < o.maxSubsteps)) return;
+    const std::optional<solver::Simulation::BodyTravel> fast = sim.fastestBody();
+    if (!fast || !(fast->travel > 2 * fast->particleRadius)) return;
+    warnedFast = true;
+    const double needed = std::ceil(sim.substeps() * fast->travel / (2 * fast->particleRadius));
+    progress.end();
+    fmt::print(stderr,
+               "warning: {}: object '{}' moves up to {:.3g} units a substep at frame {}, more than its particles' "
+               "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
+               sceneFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
+               2 * fast->particleRadius,
+               o.adaptive ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
+                          : fmt::format("raise Substeps to {:.0f} or use --adaptive", needed));
+  };
+  warnIfFast(std::max<std::int64_t>(resumed.frame, 0));
   hooks.onProgress = [&](const solver::FrameProgress& p) {
     fewestSubsteps = std::min(fewestSubsteps, sim.substeps());
     mostSubsteps = std::max(mostSubsteps, sim.substeps());
     progress.update(p);
+    warnIfFast(p.frame);
   };
 
   const std::string where = anyFormat(formats) ? folderText(outDir) : std::string("nothing written");

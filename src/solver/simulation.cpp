@@ -131,6 +131,12 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     }
     listOptions_.rowRadius = rowRadius_;
     listOptions_.exclusiveOwnersFrom = model_.bodies.firstEntity;
+    const rigid::BodySet& set = model_.bodies;
+    bodyReach_.assign(set.bodies.size(), 0.0);
+    for (std::size_t b = 0; b < set.bodies.size(); ++b)
+      for (std::uint32_t k = set.bodies[b].firstId - set.firstId; k < set.bodies[b].firstId - set.firstId + set.bodies[b].count; ++k)
+        bodyReach_[b] = std::max(bodyReach_[b], std::sqrt(double(set.ox[k]) * set.ox[k] + double(set.oy[k]) * set.oy[k] +
+                                                          double(set.oz[k]) * set.oz[k]));
     // Body particles start where their bodies put them.
     rigid_.findBodySlots(model_.bodies, state_.particles);
     rigid_.writeParticles(model_.bodies, state_.bodies, state_.particles);
@@ -594,6 +600,21 @@ int Simulation::chooseSubsteps() const {
     n = std::max(n, std::ceil(std::sqrt(0.5 * e.acceleration / kAdaptiveTravel) / fps));
   }
   return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(std::max(1, model_.maxSubsteps))));
+}
+
+std::optional<Simulation::BodyTravel> Simulation::fastestBody() const {
+  std::optional<BodyTravel> out;
+  const rigid::BodySet& set = model_.bodies;
+  for (std::size_t b = 0; b < set.bodies.size(); ++b) {
+    const rigid::BodyInfo& info = set.bodies[b];
+    if (!info.dynamic) continue;
+    const rigid::BodyState& st = state_.bodies[b];
+    const double travel =
+        (st.velocity.norm() + rigid::angularVelocity(info, st).norm() * bodyReach_[b]) * dt();
+    if (!out || travel / info.particleRadius > out->travel / out->particleRadius)
+      out = BodyTravel{b, travel, info.particleRadius};
+  }
+  return out;
 }
 
 double Simulation::travelPerSubstep() const {

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -59,6 +60,17 @@ class Simulation {
   /// interaction distances (what the blow-up check compares to model.maxTravelPerSubstep;
   /// `run --stats` prints it). Infinity when a velocity is not finite.
   [[nodiscard]] double travelPerSubstep() const;
+
+  /// The dynamic body that moves the most particles of its own size in one substep at
+  /// its current velocities: its farthest particle can move (|V| + |ω| r) dt. A body
+  /// that moves more than a particle's diameter a substep can pass into, or through, a
+  /// part of another body one particle thick (rigid contacts see overlaps, not paths).
+  struct BodyTravel {
+    std::size_t body = 0;
+    double travel = 0;          ///< scene units a substep
+    double particleRadius = 0;  ///< the body's
+  };
+  [[nodiscard]] std::optional<BodyTravel> fastestBody() const;
 
   /// The exact solver state beyond State that a checkpoint keeps so that a restored
   /// simulation continues bit for bit: the positions at which the pair list was built,
@@ -145,6 +157,7 @@ class Simulation {
   int substeps_ = 1;       // of the current frame
   int substepInFrame_ = 0; // substeps done in the current frame
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
+  std::vector<double> bodyReach_;  // per body: its farthest particle's distance from its centre of mass
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
   std::vector<float> invReach_;  // 1 / reach_
   bool uniformReach_ = false;    // every material has the same reach_

@@ -233,6 +233,40 @@ TEST(Run, NothingButErrorsWhenNotATerminal) {
   EXPECT_EQ(listFrameFiles(tmp / "p"), expectedFiles("two-fluids", {"syrup", "oil"}, 1));
 }
 
+// An object that moves more than its particles' diameter in a substep can pass through a
+// plate one particle thick (contacts see overlaps, not paths): `run` says so once, with
+// the substeps that would keep it to one diameter, unless --quiet; a slower one, and
+// --adaptive (which keeps each move to a quarter of the contact reach), say nothing.
+TEST(Run, AnObjectFasterThanAParticleASubstepIsWarnedAboutOnce) {
+  TempDir tmp;
+  const auto sceneOf = [](double speed) {
+    return "<Scene version=\"1\"><Simulation><Frames>4</Frames><Substeps>8</Substeps></Simulation>"
+           "<Environment><Width>10</Width><Height>60</Height><Depth>10</Depth></Environment>"
+           "<Object><Name>plate</Name><Shape>box</Shape><Size>8 0.2 8</Size><ParticleSize>0.5</ParticleSize>"
+           "<InitialPosition>0 5 0</InitialPosition><IsDynamic>false</IsDynamic></Object>"
+           "<Object><Name>ball</Name><Shape>sphere</Shape><Size>1</Size><ParticleSize>0.25</ParticleSize>"
+           "<InitialPosition>0 12 0</InitialPosition><InitialLinearVelocity>0 -" +
+           std::to_string(speed) + " 0</InitialLinearVelocity></Object></Scene>";
+  };
+  std::ofstream(tmp / "fast.scene") << sceneOf(300);
+  std::ofstream(tmp / "slow.scene") << sceneOf(20);
+  // 300 units/s at 24 x 8 substeps a second: 1.5625 a substep, 6.25 diameters of 0.25.
+  const RunResult fast = runSoftsub("run --formats none fast.scene", tmp.path());
+  ASSERT_EQ(fast.code, 0) << fast.err;
+  EXPECT_NE(fast.err.find("warning: fast.scene: object 'ball' moves up to 1.56 units a substep at frame 0, more "
+                          "than its particles' diameter 0.25"),
+            std::string::npos)
+      << fast.err;
+  EXPECT_NE(fast.err.find("raise Substeps to 50 or use --adaptive"), std::string::npos) << fast.err;
+  EXPECT_EQ(fast.err.find("moves up to"), fast.err.rfind("moves up to")) << "warned more than once:\n" << fast.err;
+  for (const char* args : {"run --formats none -q fast.scene", "run --formats none --adaptive fast.scene",
+                           "run --formats none slow.scene"}) {
+    const RunResult r = runSoftsub(args, tmp.path());
+    ASSERT_EQ(r.code, 0) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.find("moves up to"), std::string::npos) << args << "\n" << r.err;
+  }
+}
+
 TEST(Run, ZeroFramesWritesTheInitialState) {
   TempDir tmp;
   const RunResult r = runSoftsub("run -q --frames 0 --formats sim --out " + quote(tmp / "o") + " " +
