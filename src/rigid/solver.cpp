@@ -72,12 +72,11 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
 // so a box resting on a box does not rest on tilted normals where the two lattices do not
 // line up (a box dropped flat with its lattice 0.1 particles off its base's slid off it:
 // every normal leant the same way). An edge's or corner's particle lies under two or
-// three faces. Two faces that meet nearly opposite (within about 8 degrees), one of each
+// three faces. Two faces that meet nearly opposite (within 3 degrees), one of each
 // particle, share their bisector (two boxes' faces, or a box's bottom edge on its base's
-// top edge); otherwise the face normal nearest the centre line is taken. A face holds
-// the contact only where the other particle lies over that face particle's patch
-// (within kFacePatch radii of the normal through it); elsewhere, past an edge, the
-// centre line stays.
+// top edge); otherwise the rules below pick one normal. A face holds the contact only
+// where the other particle lies over that face particle's patch (within kFacePatch radii
+// of the normal through it); elsewhere, past an edge, the centre line stays.
 //
 // Which way a face pushes: out of its body (sides 1), even for a particle already past
 // the face particle's middle. A thin part's face (2) pushes towards the side the other
