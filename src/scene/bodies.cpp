@@ -18,9 +18,9 @@ namespace softsub::scene {
 namespace {
 
 constexpr int kSegments = 32;  // primitive meshes: fine enough to fill and to look round
-// A body particle lies under a flat face when the mesh's triangles near it are parallel
-// to this: a box's faces are, a primitive sphere's or cylinder's (11.25 degrees a
-// segment) are not.
+// Triangles near a body particle within this angle of one another are one flat face
+// (geometry::surfaceFaces): a box's face is one; a primitive sphere's or cylinder's
+// segments (11.25 degrees apart) are many, meeting at less than 30 degrees: a curve.
 constexpr double kFlatDegrees = 5;
 
 // Primitive extents (unscaled): Size, or fitted to the mesh's bounding box.
