@@ -457,16 +457,24 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
 
 namespace softsub::geometry {
 
+namespace {
+
+/// Integer cell coordinates packed 21 bits an axis into one hash key (coordinates wrap:
+/// cells 2 million apart share a key).
+std::uint64_t cellKey(long x, long y, long z) {
+  return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
+         static_cast<std::uint64_t>(z & 0x1FFFFF);
+}
+
+}  // namespace
+
 std::vector<Vec3> latticeShell(const std::vector<Vec3>& points, double spacing, int layers) {
   if (points.empty()) return {};
   Vec3 lo = points.front();
   for (const Vec3& p : points) lo = lo.cwiseMin(p);
-  // Lattice coordinates packed 21 bits an axis; a wrapped key can only make a site look
-  // occupied, which at worst drops a shell point of a fill over 2 million steps wide.
-  auto key = [&](long x, long y, long z) {
-    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
-           static_cast<std::uint64_t>(z & 0x1FFFFF);
-  };
+  // A wrapped key (cellKey) can only make a site look occupied, which at worst drops a
+  // shell point of a fill over 2 million steps wide.
+  const auto key = cellKey;
   std::vector<std::array<long, 3>> cells(points.size());
   std::unordered_set<std::uint64_t> occupied;
   occupied.reserve(points.size() * 2);
@@ -501,10 +509,7 @@ std::vector<SurfaceFaces> surfaceFaces(const TriangleMesh& mesh, const std::vect
   const Vec lo(box.lo[0], box.lo[1], box.lo[2]);
   const Vec mid = 0.5 * (lo + Vec(box.hi[0], box.hi[1], box.hi[2]));
   const auto cube = [&](const Vec& p, int k) { return static_cast<long>(std::floor((p[k] - lo[k]) / radius)); };
-  const auto key = [](long x, long y, long z) {  // 21 bits an axis, as latticeShell
-    return (static_cast<std::uint64_t>(x & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(y & 0x1FFFFF) << 21) |
-           static_cast<std::uint64_t>(z & 0x1FFFFF);
-  };
+  const auto key = cellKey;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cubes;
   std::vector<Vec> unit(mesh.triangles.size(), Vec::Zero());
   double volume = 0;  // six times the signed volume: its sign says which way the winding faces

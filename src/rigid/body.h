@@ -24,6 +24,7 @@ struct BodyInfo {
   double particleRadius = 0.5;    ///< half the particle diameter
   std::uint32_t firstId = 0;      ///< its particles have ids firstId .. firstId + count - 1
   std::uint32_t count = 0;        ///< number of particles
+  double farthest = 0;            ///< its farthest particle's distance from the centre of mass
   /// Where the geometry's origin sits in body space (body space = centre of mass at 0,
   /// axes of the geometry): the `.sim` transform's translation is x + R * this.
   Vec3 originInBody{0, 0, 0};

@@ -234,6 +234,7 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     store.reserve(store.size() + points.size());
     for (std::size_t k = 0; k < points.size(); ++k) {
       const Vec3 off = points[k] - mass.center;
+      info.farthest = std::max(info.farthest, off.norm());
       set.ox.push_back(static_cast<float>(off.x()));
       set.oy.push_back(static_cast<float>(off.y()));
       set.oz.push_back(static_cast<float>(off.z()));

@@ -131,12 +131,6 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     }
     listOptions_.rowRadius = rowRadius_;
     listOptions_.exclusiveOwnersFrom = model_.bodies.firstEntity;
-    const rigid::BodySet& set = model_.bodies;
-    bodyReach_.assign(set.bodies.size(), 0.0);
-    for (std::size_t b = 0; b < set.bodies.size(); ++b)
-      for (std::uint32_t k = set.bodies[b].firstId - set.firstId; k < set.bodies[b].firstId - set.firstId + set.bodies[b].count; ++k)
-        bodyReach_[b] = std::max(bodyReach_[b], std::sqrt(double(set.ox[k]) * set.ox[k] + double(set.oy[k]) * set.oy[k] +
-                                                          double(set.oz[k]) * set.oz[k]));
     // Body particles start where their bodies put them.
     rigid_.findBodySlots(model_.bodies, state_.particles);
     rigid_.writeParticles(model_.bodies, state_.bodies, state_.particles);
@@ -610,7 +604,7 @@ std::optional<Simulation::BodyTravel> Simulation::fastestBody() const {
     if (!info.dynamic) continue;
     const rigid::BodyState& st = state_.bodies[b];
     const double travel =
-        (st.velocity.norm() + rigid::angularVelocity(info, st).norm() * bodyReach_[b]) * dt();
+        (st.velocity.norm() + rigid::angularVelocity(info, st).norm() * info.farthest) * dt();
     if (!out || travel / info.particleRadius > out->travel / out->particleRadius)
       out = BodyTravel{b, travel, info.particleRadius};
   }

@@ -157,7 +157,6 @@ class Simulation {
   int substeps_ = 1;       // of the current frame
   int substepInFrame_ = 0; // substeps done in the current frame
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
-  std::vector<double> bodyReach_;  // per body: its farthest particle's distance from its centre of mass
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
   std::vector<float> invReach_;  // 1 / reach_
   bool uniformReach_ = false;    // every material has the same reach_
