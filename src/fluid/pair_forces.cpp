@@ -128,8 +128,12 @@ std::size_t PairList::pairCount() const {
       n += layer.size();
       continue;
     }
-    for (std::size_t q = 0; q < layer.size(); ++q)
-      n += static_cast<std::size_t>(std::popcount(layer.groups[q] & 255u));
+    // A packed layer's jump and end codes have no lanes.
+    if (layer.isPacked())
+      for (const std::uint16_t code : layer.packed) n += static_cast<std::size_t>(std::popcount(code & 255u));
+    else
+      for (std::size_t q = 0; q < layer.size(); ++q)
+        n += static_cast<std::size_t>(std::popcount(layer.groups[q] & 255u));
   }
   return n;
 }
@@ -137,7 +141,7 @@ std::size_t PairList::pairCount() const {
 std::size_t PairList::memoryBytes() const {
   std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
   for (const Layer& l : layers_)
-    b += (l.start.capacity() + l.far.capacity() + l.groups.capacity()) * 4 + l.near.capacity() * 2;
+    b += (l.start.capacity() + l.far.capacity() + l.groups.capacity()) * 4 + (l.near.capacity() + l.packed.capacity()) * 2;
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.entry.capacity() +
           s.owner.capacity() + s.kept.capacity() + s.rangeStart.capacity() + s.sums.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);

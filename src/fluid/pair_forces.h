@@ -59,8 +59,7 @@ class PairList {
   void forEachPair(Fn&& fn) const {
     for (std::size_t l = 0; l < layerCount_; ++l) {
       const Layer& layer = layers_[l];
-      for (std::uint32_t i = layer.slots.begin; i < layer.slots.end; ++i)
-        layer.forEachPartner(i - layer.slots.begin, [&](std::uint32_t j) { fn(i, j); });
+      layer.forEachPair([&](std::uint32_t k, std::uint32_t j) { fn(layer.slots.begin + k, j); });
     }
   }
   /// Whether the last build listed groups for the closed-form kernel (Layer::grouped).
@@ -79,11 +78,22 @@ class PairList {
   ///
   /// Grouped layers (the closed-form kernel, ListOptions::closedForm) list instead, per
   /// slot, the aligned groups of 8 slots [b + 8 g, b + 8 g + 8) holding its partners
-  /// (b: span.begin rounded down to a multiple of 8), one 32-bit entry each:
-  /// g << 8 | the lanes that are partners (bit c: slot b + 8 g + c). The kernel
-  /// evaluates a group's 8 lanes at once from the store's arrays, with no gather, and
-  /// masks the lanes that are not partners. `span` is then the slots the layer's pairs
-  /// touch; in narrow layers the kernel sums their forces in a buffer of that size.
+  /// (b: span.begin rounded down to a multiple of 8) and, for each, the lanes that are
+  /// partners (bit c: slot b + 8 g + c). The kernel evaluates a group's 8 lanes at once
+  /// from the store's arrays, with no gather, and masks the lanes that are not partners.
+  /// `span` is then the slots the layer's pairs touch. Narrow grouped layers (all of
+  /// them but those across the grid's wrap) keep their groups in `packed`, 16-bit codes
+  /// with no `start`: for each slot in turn, its groups in ascending order, each as
+  /// (g - previous g) << 8 | lanes, the first counted from the slot's own group; a gap
+  /// of 256 groups or more, or a step back, is first brought under 256 by jump codes
+  /// (lanes 0, high byte a signed count of kJump groups); a code 0 ends the slot. Why:
+  /// consecutive groups of a slot are near each other (the rest of its cell, then rows
+  /// of neighbouring cells), so a step fits a byte but for the one jump to the next
+  /// layer, and the kernel walks each layer's slots in order anyway: 2 bytes a group
+  /// and 4 a slot instead of 4 and 4 (about 28 bytes a particle instead of 53 in the
+  /// LJ liquid), which brought the whole simulation under 100 bytes a particle. Wide
+  /// grouped layers keep one 32-bit entry g << 8 | lanes per group, with `start`, and
+  /// the kernel adds their forces straight to the store.
   struct Layer {
     neighbors::SlotRange slots;
     std::vector<std::uint32_t> start;
@@ -91,15 +101,60 @@ class PairList {
     bool grouped = false;
     std::vector<std::uint16_t> near;    ///< narrow, not grouped: partner slot - slots.begin
     std::vector<std::uint32_t> far;     ///< not narrow, not grouped: partner slot
-    std::vector<std::uint32_t> groups;  ///< grouped: g << 8 | partner lanes
+    std::vector<std::uint32_t> groups;  ///< grouped, not narrow: g << 8 | partner lanes
+    std::vector<std::uint16_t> packed;  ///< grouped and narrow: the codes above
     neighbors::SlotRange span;          ///< the slots of the layer and of its cells' candidate ranges
+    /// Whether the layer keeps its groups in `packed`.
+    [[nodiscard]] bool isPacked() const { return grouped && narrow; }
     /// The slot of list entry q (layers that are not grouped).
     [[nodiscard]] std::uint32_t partner(std::uint32_t q) const {
       return narrow ? slots.begin + near[q] : far[q];
     }
-    /// Calls fn(j) for each partner of slot slots.begin + k, in list order.
+    /// Calls fn(k, j) for each partner j of each slot slots.begin + k, k ascending, each
+    /// slot's partners in list order (grouped layers: group by group, each group's slots
+    /// ascending).
+    template <class Fn>
+    void forEachPair(Fn&& fn) const {
+      const std::uint32_t rows = slots.end - slots.begin;
+      if (!isPacked()) {
+        for (std::uint32_t k = 0; k < rows; ++k) forEachListed(k, [&](std::uint32_t j) { fn(k, j); });
+        return;
+      }
+      const std::uint32_t base = span.begin & ~7u;
+      std::size_t q = 0;
+      for (std::uint32_t k = 0; k < rows; ++k) {
+        std::uint32_t g = (slots.begin + k - base) / 8;
+        for (std::uint32_t e = packed[q++]; e != 0; e = packed[q++]) {
+          if ((e & 255u) == 0) {
+            g += jumpOf(e);
+            continue;
+          }
+          g += e >> 8;
+          for (std::uint32_t bits = e & 255u; bits != 0; bits &= bits - 1)
+            fn(k, base + g * 8 + static_cast<std::uint32_t>(std::countr_zero(bits)));
+        }
+      }
+    }
+    /// Calls fn(j) for each partner of slot slots.begin + k, in list order. Packed
+    /// layers are walked from their first slot: for tests and tools, not hot loops.
     template <class Fn>
     void forEachPartner(std::uint32_t k, Fn&& fn) const {
+      if (isPacked()) {
+        forEachPair([&](std::uint32_t row, std::uint32_t j) {
+          if (row == k) fn(j);
+        });
+        return;
+      }
+      forEachListed(k, fn);
+    }
+    /// Number of list entries: pairs; groups in wide grouped layers; codes in packed ones.
+    [[nodiscard]] std::size_t size() const {
+      if (isPacked()) return packed.size();
+      return start.empty() ? 0 : start.back();
+    }
+    /// forEachPartner for a layer that is not packed (row starts).
+    template <class Fn>
+    void forEachListed(std::uint32_t k, Fn&& fn) const {
       for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
         if (!grouped) {
           fn(partner(q));
@@ -110,8 +165,12 @@ class PairList {
           fn((span.begin & ~7u) + (e >> 8) * 8 + static_cast<std::uint32_t>(std::countr_zero(bits)));
       }
     }
-    /// Number of list entries (pairs; groups in grouped layers).
-    [[nodiscard]] std::size_t size() const { return start.empty() ? 0 : start.back(); }
+    /// The groups of one unit of a packed jump code.
+    static constexpr std::int32_t kJump = 32;
+    /// The groups a packed jump code (lanes 0, not 0) moves by, modulo 2^32.
+    [[nodiscard]] static std::uint32_t jumpOf(std::uint32_t code) {
+      return static_cast<std::uint32_t>(static_cast<std::int32_t>(static_cast<std::int8_t>(code >> 8)) * kJump);
+    }
   };
   [[nodiscard]] std::span<const Layer> layers() const { return {layers_.data(), layerCount_}; }
   /// The layers grouped in phases (CellGrid::layersByPhase, copied at build): a pair of

@@ -237,6 +237,80 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
   return listed;
 }
 
+// Jump codes that move `prev` (a packed walk's current group) by multiples of
+// PairList::Layer::kJump groups until `to` lies from 0 to kJump - 1 groups ahead;
+// returns the new length of out.
+inline std::uint32_t jumpTo(std::uint32_t to, std::uint32_t& prev, std::uint16_t* __restrict out, std::uint32_t at) {
+  constexpr std::int64_t unit = PairList::Layer::kJump;
+  std::int64_t left = static_cast<std::int64_t>(to) - static_cast<std::int64_t>(prev);
+  while (left < 0 || left >= unit) {
+    const std::int64_t a = std::clamp<std::int64_t>(left < 0 ? -((-left + unit - 1) / unit) : left / unit, -128, 127);
+    out[at++] = static_cast<std::uint16_t>((static_cast<std::uint32_t>(a) & 255u) << 8);
+    left -= a * unit;
+  }
+  prev = to - static_cast<std::uint32_t>(left);
+  return at;
+}
+
+// The packed form of listGroups (PairList::Layer::packed): slot i's groups among
+// [b, e) as codes from out[at] on, each counted from `prev` (the last group written,
+// updated); returns the new length. Room: one code per group the range touches and
+// the jumps before them (a narrow layer's groups are under 8,200 apart: 2 jumps). A
+// range of up to 224 groups (all of them in practice: 3 cells) is written without a
+// branch per group: a jump first brings its first group less than kJump ahead, so
+// every group of it is at most 255 ahead of the one before.
+inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
+                                std::uint32_t lo, std::uint16_t* __restrict out, std::uint32_t at,
+                                std::uint32_t& prev) {
+  if (b >= e) return at;
+  const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
+  const auto n = static_cast<std::uint32_t>(s.size());
+  const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
+  // The partners among the lanes `range` of the group from slot g8.
+  const auto lanesOf = [&](std::uint32_t g8, std::uint32_t range) {
+    std::uint32_t near;
+    if (g8 + 8 <= n) [[likely]] {
+      near = nearMask(store, g8, xi, yi, zi, cut2);
+    } else {  // the store's last, partial group
+      float x[8], y[8], z[8];
+      paddedGroup(s, g8, x, y, z);
+      near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
+    }
+    return near & range;
+  };
+  const std::uint32_t first = ((b & ~7u) - lo) / 8, last = ((e - 1) / 8 * 8 - lo) / 8;
+  constexpr std::uint32_t kShort = 256 - PairList::Layer::kJump;
+  if (last - first < kShort) {
+    const std::uint32_t ahead = first - prev;  // modulo 2^32: behind is far ahead
+    if (ahead > 255 - (last - first)) at = jumpTo(first, prev, out, at);
+    // Locals, and "and" instead of a select: GCC otherwise kept the length in memory
+    // and branched on every group (twice the build's time).
+    // The lanes of [b, e) in the range's first and last group (laneRange, per group,
+    // was a fifth of the loop).
+    const std::uint32_t lastLanes = 0xFFu >> ((8 - e % 8) % 8);
+    std::uint32_t edge = 0xFFu << (b % 8);
+    std::uint32_t p = prev, a = at;
+    for (std::uint32_t g = first; g <= last; ++g) {
+      const std::uint32_t lanes = lanesOf(lo + 8 * g, edge & (g == last ? lastLanes : 0xFFu));
+      edge = 0xFFu;
+      const std::uint32_t listed = lanes != 0 ? 1u : 0u;
+      out[a] = static_cast<std::uint16_t>((g - p) << 8 | lanes);
+      a += listed;
+      p += (g - p) & (0u - listed);
+    }
+    prev = p;
+    return a;
+  }
+  for (std::uint32_t g = first; g <= last; ++g) {  // a very dense neighbourhood
+    const std::uint32_t lanes = lanesOf(lo + 8 * g, laneRange(lo + 8 * g, b, e));
+    if (lanes == 0) continue;
+    if (g - prev > 255) at = jumpTo(g, prev, out, at);
+    out[at++] = static_cast<std::uint16_t>((g - prev) << 8 | lanes);
+    prev = g;
+  }
+  return at;
+}
+
 template <class Scratch>
 void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t cellBegin, std::size_t cellEnd,
                 Scratch& buf, neighbors::CellGrid::ForwardRanges& forwardRanges, const neighbors::CellGrid& grid,
@@ -245,8 +319,6 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   layer.slots = slots;
   layer.grouped = grouped;
   const std::size_t rows = layer.slots.end - layer.slots.begin;
-  if (layer.start.capacity() < rows + 1) layer.start.reserve(rows + 1 + rows / 8);  // see grow()
-  layer.start.resize(rows + 1);
   // Narrow (16-bit offsets) when every candidate lies within 65,536 slots from the
   // layer's first one.
   // The layer's cells' forward ranges are found once (the walker) and kept for the
@@ -266,6 +338,11 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   layer.narrow = lowest >= layer.slots.begin &&
                  highest - layer.slots.begin <= std::min<std::uint32_t>(options.narrowSpan, 65536);
   layer.span = {lowest, highest};
+  const bool packed = layer.isPacked();
+  if (!packed) {
+    if (layer.start.capacity() < rows + 1) layer.start.reserve(rows + 1 + rows / 8);  // see grow()
+    layer.start.resize(rows + 1);
+  }
   // The list is written in place: its vector is used up to its capacity, grown when a
   // particle's candidates might not fit, and cut to what was listed at the end.
   auto fill = [&](auto& out, std::uint32_t entryBase) {
@@ -348,14 +425,50 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
     trim(out, listed);
     return listed;
   };
-  const std::uint32_t listed = grouped        ? fillGroups(layer.groups)
+  // Packed (narrow grouped layers): as fillGroups, written as codes (listPacked).
+  // Room per range: a code per group it touches, 3 jumps before its first (a narrow
+  // layer's groups are under 8,200 apart), one after each 256 groups without a partner,
+  // and the one code past the end that the branch-free loop writes; and the end code.
+  auto fillPacked = [&](std::vector<std::uint16_t>& out) {
+    const std::uint32_t lo = layer.span.begin & ~7u;
+    out.resize(out.capacity());
+    std::uint32_t listed = 0;
+    for (std::size_t c = cellBegin; c < cellEnd; ++c) {
+      const neighbors::SlotRange own = grid.cell(c);
+      const std::size_t cl = c - cellBegin;
+      const std::span<const neighbors::SlotRange> forward(buf.ranges.data() + buf.rangeStart[cl],
+                                                          buf.ranges.data() + buf.rangeStart[cl + 1]);
+      const auto room = [](std::uint32_t len) { return len / 8 + 2 + len / 2048 + 4; };
+      std::uint32_t most = room(own.end - own.begin);
+      for (const neighbors::SlotRange& r : forward) most += room(r.end - r.begin);
+      for (std::uint32_t i = own.begin; i < own.end; ++i) {
+        if (out.size() < listed + most + 1) grow(out, listed + most + 1);
+        const float cut2 = rowCut2[s.material[i]];
+        std::uint32_t prev = (i - lo) / 8;  // the walk starts at i's own group
+        listed = listPacked(s, i, cut2, i + 1, own.end, lo, out.data(), listed, prev);
+        for (const neighbors::SlotRange& r : forward)
+          listed = listPacked(s, i, cut2, r.begin, r.end, lo, out.data(), listed, prev);
+        out[listed++] = 0;
+      }
+    }
+    out.resize(listed);
+    trim(out, listed);
+    return listed;
+  };
+  const std::uint32_t listed = packed         ? fillPacked(layer.packed)
+                               : grouped      ? fillGroups(layer.groups)
                                : layer.narrow ? fill(layer.near, layer.slots.begin)
                                               : fill(layer.far, 0u);
   // The other encodings' memory is given back (it is empty unless the layer just
   // changed encoding: a layer near the 65,536-slot span would otherwise keep both).
   if (grouped || !layer.narrow) std::vector<std::uint16_t>().swap(layer.near);
   if (grouped || layer.narrow) std::vector<std::uint32_t>().swap(layer.far);
-  if (!grouped) std::vector<std::uint32_t>().swap(layer.groups);
+  if (!grouped || packed) std::vector<std::uint32_t>().swap(layer.groups);
+  if (!packed) std::vector<std::uint16_t>().swap(layer.packed);
+  if (packed) {
+    std::vector<std::uint32_t>().swap(layer.start);
+    return;
+  }
   layer.start.back() = listed;
   trim(layer.start, rows + 1);
 }
@@ -719,8 +832,11 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
   const float* __restrict py = s.py.data() + lo;
   const float* __restrict pz = s.pz.data() + lo;
   Force* __restrict f = s.f.data();
+  // kSums layers are narrow: packed codes, walked slot after slot; the others keep
+  // 32-bit groups with row starts (PairList::Layer).
   const std::uint32_t* __restrict start = layer.start.data();
   const std::uint32_t* __restrict groups = layer.groups.data();
+  const std::uint16_t* __restrict code = layer.packed.data();
   const std::uint32_t whole = (n - lo) / 8;  // groups counted from lo with all 8 slots in the store
   const std::uint32_t blocks = (layer.span.end - lo + 7) / 8;
   if constexpr (kSums)
@@ -767,14 +883,26 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         }
       }
     };
-    for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
-      const std::uint32_t e = groups[q], g = e >> 8;
+    const auto evaluate = [&](std::uint32_t e, std::uint32_t g) {
       if (g < whole) [[likely]] {  // straight from the store
         group(px + 8 * g, py + 8 * g, pz + 8 * g, e, g);
-        continue;
+        return;
       }
       paddedGroup(s, lo + 8 * g, tx, ty, tz);  // the store's last, partial group
       group(tx, ty, tz, e, g);
+    };
+    if constexpr (kSums) {
+      std::uint32_t g = (i - lo) / 8;
+      for (std::uint32_t e = *code++; e != 0; e = *code++) {
+        if ((e & 255u) == 0) [[unlikely]] {
+          g += PairList::Layer::jumpOf(e);
+          continue;
+        }
+        g += e >> 8;
+        evaluate(e, g);
+      }
+    } else {
+      for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) evaluate(groups[q], groups[q] >> 8);
     }
     float own[3];
     sumLanes(ax, ay, az, own);

@@ -712,6 +712,125 @@ TEST(ClosedForm, SumsAreBitwiseTheSameOnEveryThreadCountAndCopy) {
   EXPECT_GE(checked, 3);
 }
 
+// Every listed pair (i, j), i < j, sorted: a list's pairs as a set.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> pairSet(const PairList& list) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  list.forEachPair([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(std::min(i, j), std::max(i, j)); });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The codes of a packed layer (PairList::Layer::packed) that are jumps.
+std::size_t jumpCodes(const PairList& list) {
+  std::size_t n = 0;
+  for (const PairList::Layer& l : list.layers())
+    if (l.isPacked())
+      for (const std::uint16_t code : l.packed) n += (code & 255u) == 0 && code != 0 ? 1 : 0;
+  return n;
+}
+
+// Packed grouped lists where their codes must jump: layers of thousands of slots, whose
+// next layer's rows lie more than 255 groups on, and cells so dense that one candidate
+// range spans more than 224 groups (written group by group). Each lists exactly the
+// plain list's pairs (no pair twice), and the kernel matches the reference, in both
+// copies.
+TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
+  const RestoreSimd restore;
+  const float skin = 0.3f, cell = 2.3f;
+  // A jittered lattice of nx x ny x nz points `spacing` apart (no pair closer than
+  // 0.8 sigma: the closed form and the reference agree only down to where the formula
+  // clamps).
+  const auto lattice = [](int nx, int ny, int nz, float spacing, std::uint32_t seed) {
+    const ParticleStore jitter = scenarios::randomCloud(static_cast<std::size_t>(nx * ny * nz), -0.1f, 0.1f, 0, 1, seed);
+    ParticleStore s;
+    std::size_t q = 0;
+    for (int z = 0; z < nz; ++z)
+      for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x, ++q)
+          s.add(spacing * (static_cast<float>(x) + jitter.px[q]), spacing * (static_cast<float>(y) + jitter.py[q]),
+                spacing * (static_cast<float>(z) + jitter.pz[q]), 0, 0, 0, 0, 0);
+    return s;
+  };
+  // 18 x 18 cells a layer, 3 layers along z, 8 particles a cell: 324 groups a layer.
+  ParticleStore wide = lattice(36, 36, 6, 1.15f, 41);
+  const forces::InteractionTable wideTable = ljTable(0.8, 2.0);
+  // 2,548 particles in one cell (sigma 0.05, cutoff 2: a very long one).
+  ParticleStore dense = lattice(14, 14, 13, 0.11f, 43);
+  const forces::InteractionTable denseTable = ljTable(0.05, 2.0);
+  // One cell: a particle in a corner, 2,744 beyond its reach in the opposite one, then
+  // 100 around it. Its first partner lies 343 groups on in a range of 356: a jump in
+  // the group by group walk.
+  ParticleStore gap;
+  gap.add(2.29f, 2.29f, 2.29f, 0, 0, 0, 0, 0);
+  for (const auto& [block, at] : {std::pair{lattice(14, 14, 14, 0.06f, 45), 0.05f}, std::pair{lattice(5, 5, 4, 0.1f, 46), 1.8f}})
+    for (std::size_t i = 0; i < block.size(); ++i) gap.add(at + block.px[i], at + block.py[i], at + block.pz[i], 0, 0, 0, 0, 0);
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    for (ParticleStore* cloud : {&wide, &dense, &gap}) {
+      ParticleStore& s = *cloud;
+      const forces::InteractionTable& table = cloud == &wide ? wideTable : denseTable;
+      neighbors::CellGrid grid(2);
+      grid.rebuild(s, cell);
+      PairList packed, plain;
+      packed.build(grid, table, s, skin);
+      ListOptions options;
+      options.closedForm = false;
+      plain.build(grid, table, s, skin, options);
+      ASSERT_TRUE(packed.grouped());
+      std::size_t packedLayers = 0;
+      for (const PairList::Layer& l : packed.layers()) packedLayers += l.isPacked() ? 1 : 0;
+      ASSERT_EQ(packedLayers, packed.layers().size());
+      const auto pairs = pairSet(packed);
+      EXPECT_EQ(pairs, pairSet(plain));
+      EXPECT_EQ(std::adjacent_find(pairs.begin(), pairs.end()), pairs.end());
+      EXPECT_EQ(packed.pairCount(), plain.pairCount());
+      if (cloud == &wide) {
+        EXPECT_GT(jumpCodes(packed), s.size() / 2);  // about one a particle
+      }
+      if (cloud == &gap) {
+        ASSERT_EQ(grid.cellCount(), 1u);
+        EXPECT_GT(jumpCodes(packed), 0u);
+      }
+      zeroForces(s);
+      accumulatePairForces(packed, table, s);
+      expectMatchesReference(table, s, 2e-5);
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 3);
+}
+
+// A packed layer's codes, written by hand: steps, a jump ahead, a jump back, the end of
+// each slot; decoded into partners.
+TEST(PairList, PackedCodesDecodeIntoPartners) {
+  PairList::Layer layer;
+  layer.grouped = true;
+  layer.narrow = true;
+  layer.slots = {16, 18};  // own groups 2 and 2 counted from slot 0
+  layer.span = {16, 20000};
+  const auto code = [](std::uint32_t step, std::uint32_t lanes) { return static_cast<std::uint16_t>(step << 8 | lanes); };
+  const auto jump = [](std::int32_t units) { return static_cast<std::uint16_t>((static_cast<std::uint32_t>(units) & 255u) << 8); };
+  layer.packed = {code(0, 0b110),  // slot 16: group 2, slots 17 and 18
+                  code(3, 0b1),    // group 5: slot 40
+                  jump(10),        // group 5 + 320
+                  code(2, 0b10000000),  // group 327: slot 2623
+                  jump(-5),        // group 327 - 160 = 167
+                  code(255, 0b1),  // group 422: slot 3376
+                  0,
+                  0};  // slot 17: no partners
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
+  layer.forEachPair([&](std::uint32_t k, std::uint32_t j) { got.emplace_back(k, j); });
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> want = {{0, 17}, {0, 18}, {0, 40}, {0, 2623}, {0, 3376}};
+  EXPECT_EQ(got, want);
+  std::vector<std::uint32_t> of0;
+  layer.forEachPartner(0, [&](std::uint32_t j) { of0.push_back(j); });
+  EXPECT_EQ(of0, (std::vector<std::uint32_t>{17, 18, 40, 2623, 3376}));
+  std::size_t of1 = 0;
+  layer.forEachPartner(1, [&](std::uint32_t) { ++of1; });
+  EXPECT_EQ(of1, 0u);
+}
+
 // Two atoms closer than where the formula clamps its force, and two on top of each
 // other: finite, opposite forces (no direction for the coincident pair: none at all).
 TEST(ClosedForm, CloseAndCoincidentAtomsStayFinite) {
