@@ -801,6 +801,46 @@ TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
   EXPECT_GE(checked, 3);
 }
 
+// The LJ liquid's packed list (fcc at reduced density 0.8442, cutoff 2.5, 13,500
+// atoms, layers of over 300 groups): 2 bytes a listed group, with a jump and an end code
+// a slot and an eighth of spare capacity at most: under 34 bytes an atom, where 32-bit
+// entries and row starts took 53 (the budget for a whole simulation is 100).
+TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAGroup) {
+  const forces::InteractionTable table = ljTable(1.0, 2.5);
+  const float a = std::cbrt(4.0f / 0.8442f);  // the fcc cell
+  ParticleStore s;
+  const ParticleStore jitter = scenarios::randomCloud(15 * 15 * 15 * 4, -0.02f, 0.02f, 0, 1, 51);
+  const float basis[4][3] = {{0, 0, 0}, {0.5f, 0.5f, 0}, {0.5f, 0, 0.5f}, {0, 0.5f, 0.5f}};
+  std::size_t q = 0;
+  for (int z = 0; z < 15; ++z)
+    for (int y = 0; y < 15; ++y)
+      for (int x = 0; x < 15; ++x)
+        for (const auto& b : basis) {
+          s.add(a * (static_cast<float>(x) + b[0]) + jitter.px[q], a * (static_cast<float>(y) + b[1]) + jitter.py[q],
+                a * (static_cast<float>(z) + b[2]) + jitter.pz[q], 0, 0, 0, 0, 0);
+          ++q;
+        }
+  const float skin = 0.25f;
+  neighbors::CellGrid grid;
+  grid.rebuild(s, 2.5f + skin);
+  PairList list;
+  list.build(grid, table, s, skin);
+  ASSERT_TRUE(list.grouped());
+  std::size_t codes = 0, groups = 0, capacity = 0;
+  for (const PairList::Layer& l : list.layers()) {
+    ASSERT_TRUE(l.isPacked());
+    EXPECT_TRUE(l.start.empty());
+    codes += l.packed.size();
+    capacity += l.packed.capacity();
+    for (const std::uint16_t code : l.packed) groups += (code & 255u) != 0 ? 1 : 0;
+  }
+  const auto n = static_cast<double>(s.size());
+  EXPECT_GT(static_cast<double>(list.pairCount()) / n, 30.0);  // a dense liquid: about 35 partners
+  EXPECT_LE(static_cast<double>(codes), static_cast<double>(groups) + 2.1 * n);  // a jump and an end a slot
+  EXPECT_LE(static_cast<double>(capacity), 1.15 * static_cast<double>(codes));
+  EXPECT_LT(2.0 * static_cast<double>(capacity) / n, 34.0);
+}
+
 // A packed layer's codes, written by hand: steps, a jump ahead, a jump back, the end of
 // each slot; decoded into partners.
 TEST(PairList, PackedCodesDecodeIntoPartners) {
