@@ -115,7 +115,7 @@ void BM_PairKernel(benchmark::State& st) {
   st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),
                                               benchmark::Counter::kIsRate);
   st.counters["pairs/particle"] = static_cast<double>(list.pairCount()) / static_cast<double>(s.size());
-  std::size_t entries = 0;  // pairs, or groups of 8 slots in a grouped list
+  std::size_t entries = 0;  // pairs; groups of 8 slots in a wide grouped layer; codes in a packed one
   std::size_t wide = 0;  // layers with 32-bit entries, or whose sums go straight to the store
   for (const fluid::PairList::Layer& l : list.layers()) {
     entries += l.size();

@@ -82,11 +82,13 @@ class PairList {
   /// partners (bit c: slot b + 8 g + c). The kernel evaluates a group's 8 lanes at once
   /// from the store's arrays, with no gather, and masks the lanes that are not partners.
   /// `span` is then the slots the layer's pairs touch. Narrow grouped layers (all of
-  /// them but those across the grid's wrap) keep their groups in `packed`, 16-bit codes
-  /// with no `start`: for each slot in turn, its groups in ascending order, each as
-  /// (g - previous g) << 8 | lanes, the first counted from the slot's own group; a gap
-  /// of 256 groups or more, or a step back, is first brought under 256 by jump codes
-  /// (lanes 0, high byte a signed count of kJump groups); a code 0 ends the slot. Why:
+  /// them but very large layers and some across the grid's wrap) keep their groups in
+  /// `packed`, 16-bit codes with no `start`: for each slot in turn, its groups in list
+  /// order (ascending, but where a forward cell lies across the grid's wrap), each as
+  /// (g - previous g) << 8 | lanes, the first counted from the slot's own group; before
+  /// a gap of 256 groups or more, or a step back, jump codes (lanes 0, high byte a
+  /// signed count of kJump groups) bring the next group less than kJump groups ahead
+  /// (the walk's group counts modulo 2^32); a code 0 ends the slot. Why:
   /// consecutive groups of a slot are near each other (the rest of its cell, then rows
   /// of neighbouring cells), so a step fits a byte but for the one jump to the next
   /// layer, and the kernel walks each layer's slots in order anyway: 2 bytes a group

@@ -242,7 +242,10 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
 // returns the new length of out.
 inline std::uint32_t jumpTo(std::uint32_t to, std::uint32_t& prev, std::uint16_t* __restrict out, std::uint32_t at) {
   constexpr std::int64_t unit = PairList::Layer::kJump;
-  std::int64_t left = static_cast<std::int64_t>(to) - static_cast<std::int64_t>(prev);
+  // Modulo 2^32, as the walk counts: a jump back past group 0 leaves `prev` just below
+  // 2^32 (a range across the grid's wrap that lists nothing keeps it there). Groups lie
+  // far less than 2^31 apart.
+  std::int64_t left = static_cast<std::int32_t>(to - prev);
   while (left < 0 || left >= unit) {
     const std::int64_t a = std::clamp<std::int64_t>(left < 0 ? -((-left + unit - 1) / unit) : left / unit, -128, 127);
     out[at++] = static_cast<std::uint16_t>((static_cast<std::uint32_t>(a) & 255u) << 8);
@@ -255,7 +258,7 @@ inline std::uint32_t jumpTo(std::uint32_t to, std::uint32_t& prev, std::uint16_t
 // The packed form of listGroups (PairList::Layer::packed): slot i's groups among
 // [b, e) as codes from out[at] on, each counted from `prev` (the last group written,
 // updated); returns the new length. Room: one code per group the range touches and
-// the jumps before them (a narrow layer's groups are under 8,200 apart: 2 jumps). A
+// the jumps before them (a narrow layer's groups are under 8,200 apart: 3 jumps). A
 // range of up to 224 groups (all of them in practice: 3 cells) is written without a
 // branch per group: a jump first brings its first group less than kJump ahead, so
 // every group of it is at most 255 ahead of the one before.

@@ -801,6 +801,54 @@ TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
   EXPECT_GE(checked, 3);
 }
 
+// A packed list across the grid's wrap: a block of liquid and one particle flung about
+// 2^21 cells along x, so that the cells' coordinates wrap and the flung particle's
+// forward cells (x + 1) are the block's first ones, behind it in the same layer. Its
+// walk steps back to them (a jump back, past group 0: the walk's group wraps below 0),
+// lists nothing there, then goes on to the next layer's rows more than 255 groups
+// ahead. The same pairs as the plain list, the reference's forces, in both copies. (A
+// jump counted in 64 bits from the wrapped group ran on for a million codes past the
+// list's end.)
+TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable(0.8, 2.0);
+  const float skin = 0.3f, cell = 2.3f;
+  const ParticleStore jitter = scenarios::randomCloud(200 * 6 * 4, -0.1f, 0.1f, 0, 1, 61);
+  ParticleStore s;
+  s.add(static_cast<float>((double{1 << 21} - 0.5) * cell), 0.6f, 0.6f, 0, 0, 0, 0, 0);
+  std::size_t q = 0;
+  for (int z = 0; z < 4; ++z)  // 100 x 3 cells a layer, 2 layers, 8 particles a cell
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 200; ++x, ++q)
+        s.add(0.5f + 1.15f * (static_cast<float>(x) + jitter.px[q]), 0.5f + 1.15f * (static_cast<float>(y) + jitter.py[q]),
+              0.5f + 1.15f * (static_cast<float>(z) + jitter.pz[q]), 0, 0, 0, 0, 0);
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    neighbors::CellGrid grid(2);
+    grid.rebuild(s, cell);
+    PairList packed, plain;
+    packed.build(grid, table, s, skin);
+    ListOptions options;
+    options.closedForm = false;
+    plain.build(grid, table, s, skin, options);
+    ASSERT_TRUE(packed.grouped());
+    std::size_t backJumps = 0;
+    for (const PairList::Layer& l : packed.layers()) {
+      ASSERT_TRUE(l.isPacked());
+      for (const std::uint16_t code : l.packed)
+        backJumps += (code & 255u) == 0 && code != 0 && static_cast<std::int8_t>(code >> 8) < 0 ? 1 : 0;
+    }
+    EXPECT_GT(backJumps, 0u);
+    EXPECT_EQ(pairSet(packed), pairSet(plain));
+    zeroForces(s);
+    accumulatePairForces(packed, table, s);
+    expectMatchesReference(table, s, 2e-5);
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // The LJ liquid's packed list (fcc at reduced density 0.8442, cutoff 2.5, 13,500
 // atoms, layers of over 300 groups): 2 bytes a listed group, with a jump and an end code
 // a slot and an eighth of spare capacity at most: under 34 bytes an atom, where 32-bit
