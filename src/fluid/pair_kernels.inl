@@ -286,12 +286,12 @@ inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float c
   if (last - first < kShort) {
     const std::uint32_t ahead = first - prev;  // modulo 2^32: behind is far ahead
     if (ahead > 255 - (last - first)) at = jumpTo(first, prev, out, at);
-    // Locals, and "and" instead of a select: GCC otherwise kept the length in memory
-    // and branched on every group (twice the build's time).
     // The lanes of [b, e) in the range's first and last group (laneRange, per group,
     // was a fifth of the loop).
     const std::uint32_t lastLanes = 0xFFu >> ((8 - e % 8) % 8);
     std::uint32_t edge = 0xFFu << (b % 8);
+    // Locals, and "and" instead of a select: GCC otherwise kept the length in memory
+    // and branched on every group (twice the build's time).
     std::uint32_t p = prev, a = at;
     for (std::uint32_t g = first; g <= last; ++g) {
       const std::uint32_t lanes = lanesOf(lo + 8 * g, edge & (g == last ? lastLanes : 0xFFu));
