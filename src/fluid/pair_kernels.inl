@@ -938,7 +938,10 @@ inline void layerForcesOf(const PairList::Layer& layer, const forces::Interactio
     const forces::ClosedFormLj& lj = *table.closedFormLj();
     if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr);
     const std::size_t blocks = (layer.span.end - (layer.span.begin & ~7u) + 7) / 8;
-    if (sums.size() < 24 * blocks + 8) sums.resize(24 * blocks + 8);
+    if (sums.size() < 24 * blocks + 8) {
+      sums.reserve(24 * blocks + 8);  // exactly: resize alone could double it (2 bytes an atom a thread)
+      sums.resize(24 * blocks + 8);
+    }
     // 32-byte aligned, so that a group's 8 sums are one aligned vector.
     float* at = sums.data() + ((0u - reinterpret_cast<std::uintptr_t>(sums.data()) / sizeof(float)) & 7u);
     return groupedPairForces<true>(layer, lj, s, at);
