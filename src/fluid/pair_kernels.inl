@@ -207,6 +207,19 @@ inline void paddedGroup(const ParticleStore& s, std::uint32_t first, float (&x)[
   }
 }
 
+// The lanes of the store's group of 8 slots from g8 (a multiple of 8) closer to
+// (xi, yi, zi) than cut2 squared; the store's last, partial group padded (paddedGroup).
+// `store`: the store's position arrays; n: its size (read once by the caller, not per
+// group).
+inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, std::uint32_t n, std::uint32_t g8,
+                               float xi, float yi, float zi, float cut2) {
+  if (g8 + 8 <= n) [[likely]]
+    return nearMask(store, g8, xi, yi, zi, cut2);
+  float x[8], y[8], z[8];
+  paddedGroup(s, g8, x, y, z);
+  return nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
+}
+
 // A grouped layer's list (PairList::Layer::grouped) for slot i: the groups of 8 slots
 // that hold its partners among [b, e) (one candidate range: the rest of i's cell, or a
 // forward range), counted from the layer's first group `lo` (a slot, multiple of 8),
@@ -222,15 +235,7 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
   const auto n = static_cast<std::uint32_t>(s.size());
   const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
   for (std::uint32_t g8 = b & ~7u; g8 < e; g8 += 8) {
-    std::uint32_t near;
-    if (g8 + 8 <= n) {
-      near = nearMask(store, g8, xi, yi, zi, cut2);
-    } else {  // the store's last, partial group
-      float x[8], y[8], z[8];
-      paddedGroup(s, g8, x, y, z);
-      near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
-    }
-    const std::uint32_t lanes = near & laneRange(g8, b, e);
+    const std::uint32_t lanes = groupNear(s, store, n, g8, xi, yi, zi, cut2) & laneRange(g8, b, e);
     out[listed] = (g8 - lo) << 5 | lanes;  // ((g8 - lo) / 8) << 8
     listed += lanes != 0 ? 1u : 0u;
   }
@@ -262,7 +267,9 @@ inline std::uint32_t jumpTo(std::uint32_t to, std::uint32_t& prev, std::uint16_t
 // range of up to 224 groups (all of them in practice: 3 cells) is written without a
 // branch per group: a jump first brings its first group less than kJump ahead, so
 // every group of it is at most 255 ahead of the one before.
-inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
+// Inlined into the layer's loop (GCC stopped doing so by itself when groupNear was
+// shared: a call per range, 6 a slot).
+[[gnu::always_inline]] inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
                                 std::uint32_t lo, std::uint16_t* __restrict out, std::uint32_t at,
                                 std::uint32_t& prev) {
   if (b >= e) return at;
@@ -271,15 +278,7 @@ inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float c
   const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
   // The partners among the lanes `range` of the group from slot g8.
   const auto lanesOf = [&](std::uint32_t g8, std::uint32_t range) {
-    std::uint32_t near;
-    if (g8 + 8 <= n) [[likely]] {
-      near = nearMask(store, g8, xi, yi, zi, cut2);
-    } else {  // the store's last, partial group
-      float x[8], y[8], z[8];
-      paddedGroup(s, g8, x, y, z);
-      near = nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
-    }
-    return near & range;
+    return groupNear(s, store, n, g8, xi, yi, zi, cut2) & range;
   };
   const std::uint32_t first = ((b & ~7u) - lo) / 8, last = ((e - 1) / 8 * 8 - lo) / 8;
   constexpr std::uint32_t kShort = 256 - PairList::Layer::kJump;
