@@ -46,10 +46,12 @@ namespace baseline {
 }  // namespace baseline
 
 #if SOFTSUB_AVX2_CLONE
-// The same source for AVX2 without FMA: 8-wide passes (GCC 12 emits no gathers here), the same
-// IEEE operations in the same order, so the same bits as the baseline copy (tested).
+// The same source for AVX2 and FMA: 8-wide passes (GCC 12 emits no gathers here), the same
+// IEEE operations in the same order, so the same bits as the baseline copy (tested). FMA
+// only where the source asks for one (fused() in pair_kernels.inl); the file is built
+// with -ffp-contract=off (src/fluid/CMakeLists.txt), so GCC fuses nothing on its own.
 #pragma GCC push_options
-#pragma GCC target("avx2")
+#pragma GCC target("avx2,fma")
 namespace avx2 {
 #define SOFTSUB_KERNEL_AVX 1  // GCC does not define __AVX__ inside the pragma
 #include "fluid/pair_kernels.inl"
@@ -60,7 +62,7 @@ namespace avx2 {
 
 bool cpuHasAvx2() {
 #if SOFTSUB_AVX2_CLONE
-  return __builtin_cpu_supports("avx2") != 0;
+  return __builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0;
 #else
   return false;
 #endif

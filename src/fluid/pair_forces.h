@@ -215,12 +215,12 @@ void accumulatePairForces(const neighbors::CellGrid& grid, const forces::Interac
 
 /// The instruction set the pair list build and the pair kernel run with. Both exist
 /// twice, compiled from one source: for the baseline (x86-64's SSE2, or whatever the
-/// build targets) and, on x86-64 built by GCC, for AVX2 without FMA, which the CPU's
-/// support selects at start-up. Both copies do the same IEEE operations in the same
-/// order: the lists and forces are bitwise the same (tests/fluid), only the speed
-/// differs.
+/// build targets) and, on x86-64 built by GCC, for AVX2 with FMA, which the CPU's
+/// support selects at start-up (Avx2 needs both). Both copies do the same IEEE
+/// operations in the same order, fused multiply-adds only where the source writes one:
+/// the lists and forces are bitwise the same (tests/fluid), only the speed differs.
 enum class Simd { Baseline, Avx2 };
-/// The copy in use (Avx2 where the CPU has it and the build made that copy).
+/// The copy in use (Avx2 where the CPU has AVX2 and FMA and the build made that copy).
 [[nodiscard]] Simd simdInUse();
 /// Selects a copy for what follows (tests, benchmarks); false, and nothing changes,
 /// when this build or CPU has no such copy. Not meant to change during a step.

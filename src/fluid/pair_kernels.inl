@@ -1,6 +1,6 @@
 // The hot loops of the pair list build and the pair kernel. Included twice by
 // pair_forces.cpp: once for the baseline instruction set and, on x86-64 with GCC, once
-// more under `#pragma GCC target("avx2")` (docs/architecture.md, "One source, two
+// more under `#pragma GCC target("avx2,fma")` (docs/architecture.md, "One source, two
 // instruction sets"). Not a header: it has no includes of its own and defines functions
 // in whatever namespace includes it. SOFTSUB_KERNEL_AVX is 1 for the AVX2 copy.
 
@@ -778,6 +778,21 @@ inline Vf atLeast(Vf a, Vf b) {
 #endif
 }
 
+// a * b + c rounded once (IEEE 754 fusedMultiplyAdd) in every lane: one instruction in
+// the AVX2 copy (which is built only for CPUs with FMA), std::fma lane by lane in the
+// baseline one (a library call where the target has no FMA: slow, but the same bits).
+// Used only where the source asks for it; the file is built with -ffp-contract=off, so
+// the compiler fuses nothing on its own and the copies agree bit for bit.
+inline Vf fused(Vf a, Vf b, Vf c) {
+#if SOFTSUB_KERNEL_AVX || (defined(__AVX__) && defined(__FMA__))
+  return _mm256_fmadd_ps(a, b, c);
+#else
+  Vf r;
+  for (std::uint32_t l = 0; l < kLanes; ++l) r[l] = std::fma(a[l], b[l], c[l]);
+  return r;
+#endif
+}
+
 // For each 8-bit lane mask of a group entry, the lanes as all-ones or zero (8 KB): one
 // load instead of a broadcast, an AND and two comparisons per group.
 struct LaneMasks {
@@ -843,7 +858,7 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
   const std::uint32_t blocks = (layer.span.end - lo + 7) / 8;
   if constexpr (kSums)
     for (std::size_t t = 0; t < 24 * std::size_t{blocks}; ++t) sums[t] = 0.0f;
-  const Vf a = Vf{} + lj.a, b = Vf{} + lj.b, sigma2 = Vf{} + lj.sigma2;
+  const Vf a = Vf{} + lj.a, minusB = Vf{} - lj.b, sigma2 = Vf{} + lj.sigma2;
   const Vf cutoff2 = Vf{} + lj.cutoff2, minR2 = Vf{} + lj.minR2;
   float tx[8], ty[8], tz[8];  // the store's last group, padded
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
@@ -858,23 +873,24 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
       for (std::uint32_t h = 0; h < kParts; ++h) {
         const std::uint32_t o = h * kLanes;
         const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
-        const Vf r2 = dx * dx + dy * dy + dz * dz;
+        const Vf r2 = fused(dz, dz, fused(dy, dy, dx * dx));
         Vi partner;
         std::memcpy(&partner, partnerLanes + o, sizeof partner);
         const Vi in = partner & (r2 < cutoff2);
         const Vf u = sigma2 / atLeast(minR2, r2);
         const Vf u2 = u * u;
         const Vf u3 = u2 * u, u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
-        const Vf fr = (a * u3 - b) * u4;  // F(r) / r
-        const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;  // the force on j
-        ax[h] += gx;
-        ay[h] += gy;
-        az[h] += gz;
+        const Vf fr = fused(a, u3, minusB) * u4;  // F(r) / r
+        // The force on j is fr * (dx, dy, dz): added to j's sums and i's, each rounded once.
+        ax[h] = fused(fr, dx, ax[h]);
+        ay[h] = fused(fr, dy, ay[h]);
+        az[h] = fused(fr, dz, az[h]);
         if constexpr (kSums) {
-          storeV(block + o, loadV(block + o) + gx);
-          storeV(block + 8 + o, loadV(block + 8 + o) + gy);
-          storeV(block + 16 + o, loadV(block + 16 + o) + gz);
+          storeV(block + o, fused(fr, dx, loadV(block + o)));
+          storeV(block + 8 + o, fused(fr, dy, loadV(block + 8 + o)));
+          storeV(block + 16 + o, fused(fr, dz, loadV(block + 16 + o)));
         } else {
+          const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;
           const std::uint32_t at = lo + 8 * g + o;
           for (std::uint32_t c = 0; c < kLanes; ++c)
             if ((e >> (o + c)) & 1u) {
