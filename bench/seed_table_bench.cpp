@@ -41,6 +41,21 @@ void BM_SeedFrame(benchmark::State& st) {
 BENCHMARK(BM_SeedFrame)->Arg(1000)->Arg(5000)->Arg(10000)->Arg(50000)->Arg(100000)->Arg(200000)
     ->Arg(1000000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
+// The scaling check on the same simulated frames: BM_SeedFrame runs as many frames as
+// fit in its time, so a small pool is measured hundreds of frames later than a large
+// one, settled and rebuilding its list a quarter as often (docs/benchmarks.md). Here
+// every size is timed over frames 24 to 39 of the same pool, from a fresh start in
+// each repetition (the simulation is deterministic: the same work every time).
+void BM_SeedScaling(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  solver::Model model;
+  solver::State state;
+  scenarios::fluidPool(n, 1.0, 10, model, state);
+  run(st, model, state, n, 24);
+}
+BENCHMARK(BM_SeedScaling)->Arg(10000)->Arg(100000)->Arg(1000000)->Iterations(16)->Repetitions(3)
+    ->Unit(benchmark::kMillisecond);
+
 // A cube of goo slumping on the floor (more surface for small n, more motion).
 void BM_SlumpingCube(benchmark::State& st) {
   const auto n = static_cast<std::size_t>(st.range(0));
