@@ -341,7 +341,7 @@ TEST(PairForces, KernelSumsEqualAPlainLoopBitForBit) {
 // such a CPU) also runs every other test here.
 TEST(PairForces, BaselineAndAvx2CopiesAgreeBitForBit) {
   const RestoreSimd restore;
-  if (!useSimd(Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
+  if (!useSimd(Simd::Avx2)) GTEST_SKIP() << "no AVX2 and FMA copy in this build or on this CPU";
   int checked = 0;
   for (const forces::InteractionTable& table : threeTables())
     for (const float hi : {3.0f, 6.0f})
