@@ -49,7 +49,8 @@ namespace baseline {
 // The same source for AVX2 and FMA: 8-wide passes (GCC 12 emits no gathers here), the same
 // IEEE operations in the same order, so the same bits as the baseline copy (tested). FMA
 // only where the source asks for one (fused() in pair_kernels.inl); the file is built
-// with -ffp-contract=off (src/fluid/CMakeLists.txt), so GCC fuses nothing on its own.
+// with -ffp-contract=off (src/fluid/CMakeLists.txt), so GCC contracts none of our
+// multiplications and additions (its exact integer-to-float conversions aside).
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
 namespace avx2 {

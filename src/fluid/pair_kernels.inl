@@ -782,7 +782,7 @@ inline Vf atLeast(Vf a, Vf b) {
 // the AVX2 copy (which is built only for CPUs with FMA), std::fma lane by lane in the
 // baseline one (a library call where the target has no FMA: slow, but the same bits).
 // Used only where the source asks for it; the file is built with -ffp-contract=off, so
-// the compiler fuses nothing on its own and the copies agree bit for bit.
+// the compiler contracts none of our operations and the copies agree bit for bit.
 inline Vf fused(Vf a, Vf b, Vf c) {
 #if SOFTSUB_KERNEL_AVX || (defined(__AVX__) && defined(__FMA__))
   return _mm256_fmadd_ps(a, b, c);
@@ -881,7 +881,8 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         const Vf u2 = u * u;
         const Vf u3 = u2 * u, u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
         const Vf fr = fused(a, u3, minusB) * u4;  // F(r) / r
-        // The force on j is fr * (dx, dy, dz): added to j's sums and i's, each rounded once.
+        // The force on j is fr * (dx, dy, dz): added to i's sums and (narrow layers) to
+        // j's, each rounded once; wide layers add the rounded product to j.
         ax[h] = fused(fr, dx, ax[h]);
         ay[h] = fused(fr, dy, ay[h]);
         az[h] = fused(fr, dz, az[h]);
