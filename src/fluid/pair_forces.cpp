@@ -131,12 +131,13 @@ std::size_t PairList::pairCount() const {
       n += layer.size();
       continue;
     }
-    // A packed layer's jump and end codes have no lanes.
-    if (layer.isPacked())
-      for (const std::uint16_t code : layer.packed) n += static_cast<std::size_t>(std::popcount(code & 255u));
-    else
-      for (std::size_t q = 0; q < layer.size(); ++q)
-        n += static_cast<std::size_t>(std::popcount(layer.groups[q] & 255u));
+    // The lanes of every entry (a packed layer's jump and end codes have none).
+    const auto lanes = [](const auto& entries) {
+      std::size_t count = 0;
+      for (const auto e : entries) count += static_cast<std::size_t>(std::popcount(static_cast<std::uint32_t>(e & 255u)));
+      return count;
+    };
+    n += layer.isPacked() ? lanes(layer.packed) : lanes(layer.groups);
   }
   return n;
 }
