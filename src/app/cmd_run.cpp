@@ -57,12 +57,12 @@ class StatsObserver : public FrameObserver {
   explicit StatsObserver(const solver::Simulation& sim) : sim_(sim) {}
   void onFrame(const FrameSnapshot& frame) override {
     if (!headerDone_) {
-      fmt::print("# frame time kinetic pair gravity bodies total substeps travel\n");
+      fmt::print("# frame time kinetic pair gravity bodies total substeps travel lists\n");
       headerDone_ = true;
     }
     const solver::EnergyReport e = solver::measureEnergy(sim_.model(), sim_.state());
-    fmt::print("{} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {} {:.4g}\n", frame.frame, frame.time, e.kinetic, e.pair,
-               e.gravity, e.bodies, e.total(), sim_.substeps(), sim_.travelPerSubstep());
+    fmt::print("{} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {} {:.4g} {}\n", frame.frame, frame.time, e.kinetic, e.pair,
+               e.gravity, e.bodies, e.total(), sim_.substeps(), sim_.travelPerSubstep(), sim_.listBuilds());
     std::fflush(stdout);
   }
 

@@ -58,11 +58,11 @@ TEST(ThreadsCli, StatsPrintsEveryFramesEnergiesThatAddUp) {
   const fs::path scene = copyInto(examplesDir() / "box-on-jelly.scene", tmp.path());
   const RunResult r = runSoftsub("run -q --frames 3 --formats none --stats " + quote(scene), tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.rfind("# frame time kinetic pair gravity bodies total substeps travel\n", 0), 0u) << r.out;
+  EXPECT_EQ(r.out.rfind("# frame time kinetic pair gravity bodies total substeps travel lists\n", 0), 0u) << r.out;
   const auto rows = statsRows(r.out);
   ASSERT_EQ(rows.size(), 4u) << r.out;
   for (std::size_t f = 0; f < rows.size(); ++f) {
-    ASSERT_EQ(rows[f].size(), 9u);
+    ASSERT_EQ(rows[f].size(), 10u);
     EXPECT_EQ(rows[f][7], 8.0) << "the scene's substeps";
     EXPECT_GE(rows[f][8], 0.0);
     EXPECT_LT(rows[f][8], 10.0) << "within the blow-up check's limit";
@@ -71,6 +71,10 @@ TEST(ThreadsCli, StatsPrintsEveryFramesEnergiesThatAddUp) {
     EXPECT_NEAR(rows[f][6], parts, 1e-6 * std::max(1.0, std::abs(parts)));
     EXPECT_GE(rows[f][2], 0.0);
     EXPECT_GE(rows[f][5], 0.0);
+    // Pair lists built so far: at least the first, at most one a substep after it.
+    EXPECT_GE(rows[f][9], f > 0 ? 1.0 : 0.0);
+    EXPECT_LE(rows[f][9], 1.0 + 8.0 * static_cast<double>(f));
+    if (f > 0) EXPECT_GE(rows[f][9], rows[f - 1][9]);
   }
   EXPECT_GT(rows[3][2], 0.0) << "the jelly moves under gravity";
   // The numbers do not depend on the thread count either.
