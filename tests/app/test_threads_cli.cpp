@@ -74,7 +74,9 @@ TEST(ThreadsCli, StatsPrintsEveryFramesEnergiesThatAddUp) {
     // Pair lists built so far: at least the first, at most one a substep after it.
     EXPECT_GE(rows[f][9], f > 0 ? 1.0 : 0.0);
     EXPECT_LE(rows[f][9], 1.0 + 8.0 * static_cast<double>(f));
-    if (f > 0) EXPECT_GE(rows[f][9], rows[f - 1][9]);
+    if (f > 0) {
+      EXPECT_GE(rows[f][9], rows[f - 1][9]);
+    }
   }
   EXPECT_GT(rows[3][2], 0.0) << "the jelly moves under gravity";
   // The numbers do not depend on the thread count either.
