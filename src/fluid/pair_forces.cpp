@@ -1,6 +1,7 @@
 #include "fluid/pair_forces.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <stdexcept>
 #include <bit>
@@ -132,12 +133,17 @@ std::size_t PairList::pairCount() const {
       continue;
     }
     // The lanes of every entry (a packed layer's jump and end codes have none).
-    const auto lanes = [](const auto& entries) {
-      std::size_t count = 0;
-      for (const auto e : entries) count += static_cast<std::size_t>(std::popcount(static_cast<std::uint32_t>(e & 255u)));
-      return count;
-    };
-    n += layer.isPacked() ? lanes(layer.packed) : lanes(layer.groups);
+    if (layer.isPacked()) {
+      // A window's lanes from a table (std::popcount is a library call on baseline x86-64).
+      static constexpr auto kLanes = [] {
+        std::array<std::uint8_t, 128> t{};
+        for (std::uint32_t f = 0; f < 128; ++f) t[f] = static_cast<std::uint8_t>(std::popcount(Layer::windowLanes(f)));
+        return t;
+      }();
+      for (const std::uint16_t e : layer.packed) n += Layer::isWindow(e) ? kLanes[e & 127u] : 0u;
+      continue;
+    }
+    for (const std::uint32_t e : layer.groups) n += static_cast<std::size_t>(std::popcount(e & 255u));
   }
   return n;
 }

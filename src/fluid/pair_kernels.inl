@@ -242,73 +242,79 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
   return listed;
 }
 
-// Jump codes that move `prev` (a packed walk's current group) by multiples of
-// PairList::Layer::kJump groups until `to` lies from 0 to kJump - 1 groups ahead;
-// returns the new length of out.
-inline std::uint32_t jumpTo(std::uint32_t to, std::uint32_t& prev, std::uint16_t* __restrict out, std::uint32_t at) {
-  constexpr std::int64_t unit = PairList::Layer::kJump;
-  // Modulo 2^32, as the walk counts: a jump back past group 0 leaves `prev` just below
-  // 2^32 (a range across the grid's wrap that lists nothing keeps it there). Groups lie
-  // far less than 2^31 apart.
-  std::int64_t left = static_cast<std::int32_t>(to - prev);
-  while (left < 0 || left >= unit) {
-    const std::int64_t a = std::clamp<std::int64_t>(left < 0 ? -((-left + unit - 1) / unit) : left / unit, -128, 127);
-    out[at++] = static_cast<std::uint16_t>((static_cast<std::uint32_t>(a) & 255u) << 8);
-    left -= a * unit;
-  }
-  prev = to - static_cast<std::uint32_t>(left);
-  return at;
-}
-
-// The packed form of listGroups (PairList::Layer::packed): slot i's groups among
-// [b, e) as codes from out[at] on, each counted from `prev` (the last group written,
-// updated); returns the new length. Room: one code per group the range touches and
-// the jumps before them (a narrow layer's groups are under 8,200 apart: 3 jumps). A
-// range of up to 224 groups (all of them in practice: 3 cells) is written without a
-// branch per group: a jump first brings its first group less than kJump ahead, so
-// every group of it is at most 255 ahead of the one before.
-// Inlined into the layer's loop (GCC stopped doing so by itself when groupNear was
-// shared: a call per range, 6 a slot).
-[[gnu::always_inline]] inline std::uint32_t listPacked(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
-                                std::uint32_t lo, std::uint16_t* __restrict out, std::uint32_t at,
-                                std::uint32_t& prev) {
+// Slot i's aligned groups of 8 among the candidates [b, e) (one candidate range: the
+// rest of i's cell, or a forward range), for packWindows: as listGroups, each group
+// that holds a partner as (g - lo / 8) << 8 | lanes from out[at] on (at most one per
+// group the range touches); returns the new length. The lanes of [b, e) in the range's
+// first and last group are found once (laneRange per group was a fifth of the loop),
+// and the loop has no branch per group: GCC otherwise kept the length in memory and
+// branched on every group (twice the build's time). Inlined into the layer's loop (GCC
+// stopped doing so by itself when groupNear was shared: a call per range, 6 a slot).
+[[gnu::always_inline]] inline std::uint32_t listAligned(const ParticleStore& s, std::uint32_t i, float cut2,
+                                                        std::uint32_t b, std::uint32_t e, std::uint32_t lo,
+                                                        std::uint32_t* __restrict out, std::uint32_t at) {
   if (b >= e) return at;
   const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
   const auto n = static_cast<std::uint32_t>(s.size());
   const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
-  // The partners among the lanes `range` of the group from slot g8.
-  const auto lanesOf = [&](std::uint32_t g8, std::uint32_t range) {
-    return groupNear(s, store, n, g8, xi, yi, zi, cut2) & range;
-  };
   const std::uint32_t first = ((b & ~7u) - lo) / 8, last = ((e - 1) / 8 * 8 - lo) / 8;
-  constexpr std::uint32_t kShort = 256 - PairList::Layer::kJump;
-  if (last - first < kShort) {
-    const std::uint32_t ahead = first - prev;  // modulo 2^32: behind is far ahead
-    if (ahead > 255 - (last - first)) at = jumpTo(first, prev, out, at);
-    // The lanes of [b, e) in the range's first and last group (laneRange, per group,
-    // was a fifth of the loop).
-    const std::uint32_t lastLanes = 0xFFu >> ((8 - e % 8) % 8);
-    std::uint32_t edge = 0xFFu << (b % 8);
-    // Locals, and "and" instead of a select: GCC otherwise kept the length in memory
-    // and branched on every group (twice the build's time).
-    std::uint32_t p = prev, a = at;
-    for (std::uint32_t g = first; g <= last; ++g) {
-      const std::uint32_t lanes = lanesOf(lo + 8 * g, edge & (g == last ? lastLanes : 0xFFu));
-      edge = 0xFFu;
-      const std::uint32_t listed = lanes != 0 ? 1u : 0u;
-      out[a] = static_cast<std::uint16_t>((g - p) << 8 | lanes);
-      a += listed;
-      p += (g - p) & (0u - listed);
-    }
-    prev = p;
-    return a;
+  const std::uint32_t lastLanes = 0xFFu >> ((8 - e % 8) % 8);
+  std::uint32_t edge = 0xFFu << (b % 8);
+  std::uint32_t a = at;
+  for (std::uint32_t g = first; g <= last; ++g) {
+    const std::uint32_t lanes =
+        groupNear(s, store, n, lo + 8 * g, xi, yi, zi, cut2) & edge & (g == last ? lastLanes : 0xFFu);
+    edge = 0xFFu;
+    out[a] = g << 8 | lanes;
+    a += lanes != 0 ? 1u : 0u;
   }
-  for (std::uint32_t g = first; g <= last; ++g) {  // a very dense neighbourhood
-    const std::uint32_t lanes = lanesOf(lo + 8 * g, laneRange(lo + 8 * g, b, e));
-    if (lanes == 0) continue;
-    if (g - prev > 255) at = jumpTo(g, prev, out, at);
-    out[at++] = static_cast<std::uint16_t>((g - prev) << 8 | lanes);
-    prev = g;
+  return a;
+}
+
+// Slot i's aligned groups (listAligned's entries, `count` of them, counted from slot
+// lo) as packed window codes (PairList::Layer::packed) from out[at] on, without the end
+// code; returns the new length. Room: 6 codes per entry and one more (a window per
+// entry at most, each after up to 5 jumps; one code is written to past the end).
+// Greedy: a window starts at the lowest partner not yet in one and takes the partners
+// among its 8 slots. A window that starts at lane `off` of group g covers lanes off
+// and up of g and the lanes below off of g + 1, so each entry either adds to the last
+// window's code (a group two ranges share, or the next group) or starts one at its
+// lowest partner left, with one branch per entry and none per window (the LJ liquid's
+// build: 4.2-4.3 ms against 3.2 for aligned groups; keeping the waiting partners in a
+// 64-bit mask and writing windows in a loop took 4.8). Entries come in ascending
+// order but where a forward cell lies across the grid's wrap; a window then starts
+// behind the last one, after jump codes: still each pair in exactly one window.
+inline std::uint32_t packWindows(std::uint32_t i, std::uint32_t lo, const std::uint32_t* __restrict entry,
+                                 std::uint32_t count, std::uint16_t* __restrict out, std::uint32_t at) {
+  using Layer = PairList::Layer;
+  std::uint32_t prev = i - 7;  // the last window's first slot, modulo 2^32 as the kernel's walk
+  std::uint32_t wg = UINT32_MAX - 1, off = 0;  // the last window's group (from lo) and first lane
+  std::uint32_t last = at;                      // its code
+  for (std::uint32_t q = 0; q < count; ++q) {
+    const std::uint32_t g = entry[q] >> 8, m = entry[q] & 255u;
+    const std::uint32_t dg = g - wg;  // modulo 2^32
+    // The lanes the last window covers in this group, and where they are in the window.
+    const std::uint32_t covered = dg == 0 ? m & (0xFFu << off) : dg == 1 ? m & ((1u << off) - 1u) : 0u;
+    const std::uint32_t lanes = dg == 0 ? covered >> off : covered << (8 - off);
+    out[last] = static_cast<std::uint16_t>(out[last] | (lanes & 255u) >> 1);
+    const std::uint32_t left = m & ~covered;
+    if (left == 0) continue;
+    off = static_cast<std::uint32_t>(std::countr_zero(left));
+    wg = g;
+    const std::uint32_t w = lo + 8 * g + off;
+    std::uint32_t step = w - prev;
+    while (step - Layer::kMinStep > 511 - Layer::kMinStep) [[unlikely]] {  // jumps: 8 to 263 slots ahead after them
+      const std::int64_t ahead = static_cast<std::int32_t>(step) - static_cast<std::int64_t>(Layer::kMinStep);
+      const std::int64_t units = std::clamp<std::int64_t>(
+          ahead < 0 ? -((-ahead + Layer::kJumpSlots - 1) / Layer::kJumpSlots) : ahead / Layer::kJumpSlots, -64, 63);
+      const auto code = static_cast<std::uint16_t>(1u << Layer::kStepShift | (static_cast<std::uint32_t>(units) & 127u));
+      out[at++] = code;
+      prev += Layer::jumpOf(code);
+      step = w - prev;
+    }
+    last = at;
+    out[at++] = static_cast<std::uint16_t>(step << Layer::kStepShift | (left >> off & 255u) >> 1);
+    prev = w;
   }
   return at;
 }
@@ -427,10 +433,8 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
     trim(out, listed);
     return listed;
   };
-  // Packed (narrow grouped layers): as fillGroups, written as codes (listPacked).
-  // Room per range: a code per group it touches, 3 jumps before its first (a narrow
-  // layer's groups are under 8,200 apart), one after each 256 groups without a partner,
-  // and the one code past the end that the branch-free loop writes; and the end code.
+  // Packed (narrow grouped layers): per slot, its aligned groups as fillGroups finds
+  // them (listAligned, into the scratch buffer), then as windows (packWindows).
   auto fillPacked = [&](std::vector<std::uint16_t>& out) {
     const std::uint32_t lo = layer.span.begin & ~7u;
     out.resize(out.capacity());
@@ -440,16 +444,17 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
       const std::size_t cl = c - cellBegin;
       const std::span<const neighbors::SlotRange> forward(buf.ranges.data() + buf.rangeStart[cl],
                                                           buf.ranges.data() + buf.rangeStart[cl + 1]);
-      const auto room = [](std::uint32_t len) { return len / 8 + 2 + len / 2048 + 4; };
-      std::uint32_t most = room(own.end - own.begin);
-      for (const neighbors::SlotRange& r : forward) most += room(r.end - r.begin);
+      // The most groups one particle of the cell can list: each range's groups.
+      std::uint32_t most = (own.end - own.begin) / 8 + 2;
+      for (const neighbors::SlotRange& r : forward) most += (r.end - r.begin) / 8 + 2;
+      if (buf.kept.size() < most) buf.kept.resize(most);
+      std::uint32_t* const groups = buf.kept.data();
       for (std::uint32_t i = own.begin; i < own.end; ++i) {
-        if (out.size() < listed + most + 1) grow(out, listed + most + 1);
         const float cut2 = rowCut2[s.material[i]];
-        std::uint32_t prev = (i - lo) / 8;  // the walk starts at i's own group
-        listed = listPacked(s, i, cut2, i + 1, own.end, lo, out.data(), listed, prev);
-        for (const neighbors::SlotRange& r : forward)
-          listed = listPacked(s, i, cut2, r.begin, r.end, lo, out.data(), listed, prev);
+        std::uint32_t count = listAligned(s, i, cut2, i + 1, own.end, lo, groups, 0);
+        for (const neighbors::SlotRange& r : forward) count = listAligned(s, i, cut2, r.begin, r.end, lo, groups, count);
+        if (out.size() < listed + 6 * count + 1) grow(out, listed + 6 * count + 1);
+        listed = packWindows(i, lo, groups, count, out.data(), listed);
         out[listed++] = 0;
       }
     }
@@ -803,6 +808,16 @@ struct LaneMasks {
   }
 };
 inline constexpr LaneMasks kLaneMasks{};
+// For each 7-bit lane field of a packed window code, the window's lanes (lane 0 always
+// a partner: PairList::Layer::windowLanes) as all-ones or zero (4 KB).
+struct WindowMasks {
+  alignas(32) std::int32_t lanes[128][8];
+  constexpr WindowMasks() : lanes() {
+    for (std::uint32_t m = 0; m < 128; ++m)
+      for (std::uint32_t c = 0; c < 8; ++c) lanes[m][c] = (PairList::Layer::windowLanes(m) >> c) & 1u ? -1 : 0;
+  }
+};
+inline constexpr WindowMasks kWindowMasks{};
 // The 8 lanes of each of three sums (x, y, z), each added in one fixed order whatever
 // the parts: ((0 + 1) + (2 + 3)) + ((4 + 5) + (6 + 7)); horizontal additions in the
 // AVX2 copy (a third of the instructions of lane-by-lane sums).
@@ -826,50 +841,52 @@ inline void sumLanes(const Vf* x, const Vf* y, const Vf* z, float out[3]) {
 }
 
 // The pairs of one grouped layer (PairList::Layer::grouped) with the true Lennard-Jones
-// force in closed form (InteractionTable::closedFormLj): per slot i, each listed group
-// of 8 slots is evaluated in 8-lane arithmetic straight from the store's position
-// arrays (no gather, no table), the lanes that are not partners or lie beyond the
-// cutoff masked to exactly 0. Why: the table kernel spends most of its instructions
-// gathering a partner's position and scattering its force (docs/benchmarks.md); here a
-// group costs three loads and, with kSums, three read-modify-writes of a buffer in the
-// same layout, whatever its number of partners (about 3 of 8 in a dense liquid).
-// kSums (narrow layers): the forces are summed in `sums` (3 arrays of `stride` floats
-// over the layer's span, from its first slot rounded down to 8) and added to the store
-// after the layer, in slot order; otherwise (layers whose pairs reach across the grid's
-// wrap) straight to the store, partner by partner. Each slot's sum runs in a fixed
-// order: pair by pair in list order, i's own sum (its 8 lanes added in a fixed order)
-// after its last pair; the same whatever the number of threads.
+// force in closed form (InteractionTable::closedFormLj): per slot i, each listed window
+// of 8 slots (packed layers) or aligned group of 8 (wide ones) is evaluated in 8-lane
+// arithmetic straight from the store's position arrays (no gather, no table), the
+// lanes that are not partners or lie beyond the cutoff masked to exactly 0. Why: the
+// table kernel spends most of its instructions gathering a partner's position and
+// scattering its force (docs/benchmarks.md); here a window costs three loads and, with
+// kSums, three read-modify-writes of a buffer in the same layout, whatever its number
+// of partners (about 3 of 8 in a dense liquid).
+// kSums (narrow, packed layers): the forces are summed in `sums` (3 arrays x, y, z of
+// `stride` floats over the layer's span, from its first slot rounded down to 8, with 8
+// to spare past its end) and added to the store after the layer, in slot order;
+// otherwise (layers whose pairs reach across the grid's wrap) straight to the store,
+// partner by partner. Each slot's sum runs in a fixed order: pair by pair in list
+// order, i's own sum (its 8 lanes added in a fixed order) after its last pair; the same
+// whatever the number of threads.
 template <bool kSums>
 void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
-                       float* __restrict sums) {
+                       float* __restrict sums, std::size_t stride) {
   const auto n = static_cast<std::uint32_t>(s.size());
   const std::uint32_t lo = layer.span.begin & ~7u;
-  // Positions counted from the layer's first group, as its entries are.
-  const float* __restrict px = s.px.data() + lo;
-  const float* __restrict py = s.py.data() + lo;
-  const float* __restrict pz = s.pz.data() + lo;
+  const float* __restrict px = s.px.data();
+  const float* __restrict py = s.py.data();
+  const float* __restrict pz = s.pz.data();
   Force* __restrict f = s.f.data();
-  // kSums layers are narrow: packed codes, walked slot after slot; the others keep
-  // 32-bit groups with row starts (PairList::Layer).
+  // kSums layers are packed: codes, walked slot after slot; the others keep 32-bit
+  // groups with row starts (PairList::Layer).
   const std::uint32_t* __restrict start = layer.start.data();
   const std::uint32_t* __restrict groups = layer.groups.data();
   const std::uint16_t* __restrict code = layer.packed.data();
-  const std::uint32_t whole = (n - lo) / 8;  // groups counted from lo with all 8 slots in the store
-  const std::uint32_t blocks = (layer.span.end - lo + 7) / 8;
+  float* __restrict sx = sums;
+  float* __restrict sy = sums + stride;
+  float* __restrict sz = sums + 2 * stride;
   if constexpr (kSums)
-    for (std::size_t t = 0; t < 24 * std::size_t{blocks}; ++t) sums[t] = 0.0f;
+    for (std::size_t t = 0; t < 3 * stride; ++t) sums[t] = 0.0f;
   const Vf a = Vf{} + lj.a, minusB = Vf{} - lj.b, sigma2 = Vf{} + lj.sigma2;
   const Vf cutoff2 = Vf{} + lj.cutoff2, minR2 = Vf{} + lj.minR2;
-  float tx[8], ty[8], tz[8];  // the store's last group, padded
+  float tx[8], ty[8], tz[8];  // the store's last slots, padded
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
   for (std::uint32_t k = 0; k < rows; ++k) {
     const std::uint32_t i = layer.slots.begin + k;
     const Vf xi = Vf{} + s.px[i], yi = Vf{} + s.py[i], zi = Vf{} + s.pz[i];
     Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
-    // One group: relative group g, whose positions are at xs, ys, zs.
-    const auto group = [&](const float* xs, const float* ys, const float* zs, std::uint32_t e, std::uint32_t g) {
-      const std::int32_t* partnerLanes = kLaneMasks.lanes[e & 255u];
-      float* block = sums + 24 * std::size_t{g};  // kSums: x, y, z sums of the group's 8 slots
+    // The 8 slots from w, whose positions are at xs, ys, zs; partnerLanes: their lanes
+    // as all-ones or zero; bits: the same as bits (wide layers' scatter).
+    const auto window = [&](const float* xs, const float* ys, const float* zs, const std::int32_t* partnerLanes,
+                            std::uint32_t bits, std::uint32_t w) {
       for (std::uint32_t h = 0; h < kParts; ++h) {
         const std::uint32_t o = h * kLanes;
         const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
@@ -878,58 +895,62 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
         std::memcpy(&partner, partnerLanes + o, sizeof partner);
         const Vi in = partner & (r2 < cutoff2);
         const Vf u = sigma2 / atLeast(minR2, r2);
-        const Vf u2 = u * u;
-        const Vf u3 = u2 * u, u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
-        const Vf fr = fused(a, u3, minusB) * u4;  // F(r) / r
-        // The force on j is fr * (dx, dy, dz): added to i's sums and (narrow layers) to
+        // a u³ as (a u) u², so that a u and u² run side by side: one multiplication
+        // fewer on the chain that bounds this loop (docs/benchmarks.md).
+        const Vf au = a * u, u2 = u * u;
+        const Vf u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
+        const Vf fr = fused(au, u2, minusB) * u4;  // F(r) / r
+        // The force on j is fr * (dx, dy, dz): added to i's sums and (packed layers) to
         // j's, each rounded once; wide layers add the rounded product to j.
         ax[h] = fused(fr, dx, ax[h]);
         ay[h] = fused(fr, dy, ay[h]);
         az[h] = fused(fr, dz, az[h]);
         if constexpr (kSums) {
-          storeV(block + o, fused(fr, dx, loadV(block + o)));
-          storeV(block + 8 + o, fused(fr, dy, loadV(block + 8 + o)));
-          storeV(block + 16 + o, fused(fr, dz, loadV(block + 16 + o)));
+          const std::size_t at = w - lo + o;
+          storeV(sx + at, fused(fr, dx, loadV(sx + at)));
+          storeV(sy + at, fused(fr, dy, loadV(sy + at)));
+          storeV(sz + at, fused(fr, dz, loadV(sz + at)));
         } else {
           const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;
-          const std::uint32_t at = lo + 8 * g + o;
           for (std::uint32_t c = 0; c < kLanes; ++c)
-            if ((e >> (o + c)) & 1u) {
-              f[at + c].x += gx[c];
-              f[at + c].y += gy[c];
-              f[at + c].z += gz[c];
+            if ((bits >> (o + c)) & 1u) {
+              f[w + o + c].x += gx[c];
+              f[w + o + c].y += gy[c];
+              f[w + o + c].z += gz[c];
             }
         }
       }
     };
-    const auto evaluate = [&](std::uint32_t e, std::uint32_t g) {
-      if (g < whole) [[likely]] {  // straight from the store
-        group(px + 8 * g, py + 8 * g, pz + 8 * g, e, g);
+    const auto evaluate = [&](const std::int32_t* partnerLanes, std::uint32_t bits, std::uint32_t w) {
+      if (w + 8 <= n) [[likely]] {  // straight from the store
+        window(px + w, py + w, pz + w, partnerLanes, bits, w);
         return;
       }
-      paddedGroup(s, lo + 8 * g, tx, ty, tz);  // the store's last, partial group
-      group(tx, ty, tz, e, g);
+      paddedGroup(s, w, tx, ty, tz);  // the store's last slots
+      window(tx, ty, tz, partnerLanes, bits, w);
     };
     if constexpr (kSums) {
-      std::uint32_t g = (i - lo) / 8;
+      std::uint32_t w = i - 7;  // modulo 2^32, as PairList::Layer::packed counts
       for (std::uint32_t e = *code++; e != 0; e = *code++) {
-        if ((e & 255u) == 0) [[unlikely]] {
-          g += PairList::Layer::jumpOf(e);
+        if (!PairList::Layer::isWindow(e)) [[unlikely]] {  // a jump (e is not 0)
+          w += PairList::Layer::jumpOf(e);
           continue;
         }
-        g += e >> 8;
-        evaluate(e, g);
+        w += e >> PairList::Layer::kStepShift;
+        evaluate(kWindowMasks.lanes[e & 127u], 0, w);
       }
     } else {
-      for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) evaluate(groups[q], groups[q] >> 8);
+      for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
+        const std::uint32_t e = groups[q];
+        evaluate(kLaneMasks.lanes[e & 255u], e & 255u, lo + (e >> 8) * 8);
+      }
     }
     float own[3];
     sumLanes(ax, ay, az, own);
     if constexpr (kSums) {
-      float* block = sums + 24 * std::size_t{(i - lo) / 8} + (i - lo) % 8;
-      block[0] -= own[0];
-      block[8] -= own[1];
-      block[16] -= own[2];
+      sx[i - lo] -= own[0];
+      sy[i - lo] -= own[1];
+      sz[i - lo] -= own[2];
     } else {
       f[i].x -= own[0];
       f[i].y -= own[1];
@@ -938,10 +959,9 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
   }
   if constexpr (kSums)
     for (std::uint32_t t = layer.span.begin; t < layer.span.end; ++t) {
-      const float* block = sums + 24 * std::size_t{(t - lo) / 8} + (t - lo) % 8;
-      f[t].x += block[0];
-      f[t].y += block[8];
-      f[t].z += block[16];
+      f[t].x += sx[t - lo];
+      f[t].y += sy[t - lo];
+      f[t].z += sz[t - lo];
     }
 }
 
@@ -952,15 +972,15 @@ inline void layerForcesOf(const PairList::Layer& layer, const forces::Interactio
   if (layer.grouped) {
     if (!table.closedFormLj()) throw std::logic_error("a grouped pair list used with a table that has no closed form");
     const forces::ClosedFormLj& lj = *table.closedFormLj();
-    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr);
-    const std::size_t blocks = (layer.span.end - (layer.span.begin & ~7u) + 7) / 8;
-    if (sums.size() < 24 * blocks + 8) {
-      sums.reserve(24 * blocks + 8);  // exactly: resize alone could double it (2 bytes an atom a thread)
-      sums.resize(24 * blocks + 8);
+    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr, 0);
+    // Each of x, y, z: the span from its first slot rounded down to 8, and the 7 slots
+    // a window starting at its last slot reaches past it, rounded up to 8.
+    const std::size_t stride = (layer.span.end - (layer.span.begin & ~7u) + 7 + 7) / 8 * 8;
+    if (sums.size() < 3 * stride) {
+      sums.reserve(3 * stride);  // exactly: resize alone could double it (2 bytes an atom a thread)
+      sums.resize(3 * stride);
     }
-    // 32-byte aligned, so that a group's 8 sums are one aligned vector.
-    float* at = sums.data() + ((0u - reinterpret_cast<std::uintptr_t>(sums.data()) / sizeof(float)) & 7u);
-    return groupedPairForces<true>(layer, lj, s, at);
+    return groupedPairForces<true>(layer, lj, s, sums.data(), stride);
   }
   if (layer.narrow)
     layerForces(layer, layer.near.data(), layer.slots.begin, table, s);

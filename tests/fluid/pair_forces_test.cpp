@@ -733,7 +733,7 @@ std::size_t jumpCodes(const PairList& list) {
   std::size_t n = 0;
   for (const PairList::Layer& l : list.layers())
     if (l.isPacked())
-      for (const std::uint16_t code : l.packed) n += (code & 255u) == 0 && code != 0 ? 1 : 0;
+      for (const std::uint16_t code : l.packed) n += PairList::Layer::isJump(code) ? 1 : 0;
   return n;
 }
 
@@ -815,10 +815,11 @@ TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
 // A packed list across the grid's wrap: a block of liquid and one particle flung about
 // 2^21 cells along x, so that the cells' coordinates wrap and the flung particle's
 // forward cells (x + 1) are the block's first ones, behind it in the same layer. Its
-// walk steps back to them (a jump back, past group 0: the walk's group wraps below 0),
-// lists nothing there, then goes on to the next layer's rows more than 255 groups
-// ahead. The same pairs as the plain list, the reference's forces, in both copies. (A
-// jump counted in 64 bits from the wrapped group ran on for a million codes past the
+// candidate ranges there hold no partner, so it lists nothing and writes no window
+// (windows are written only for partners; the walk's slot counts start below 0 for the
+// first slots). The same pairs as the plain list, the reference's forces, in both
+// copies, and a jump and an end code a slot at most besides the windows. (A jump
+// counted in 64 bits from a wrapped position once ran on for a million codes past the
 // list's end.)
 TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
   const RestoreSimd restore;
@@ -837,21 +838,27 @@ TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
   for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
     if (!useSimd(simd)) continue;
     const PairList packed = expectPackedListsThePlainPairs(table, s, cell, skin);
-    std::size_t backJumps = 0;
-    for (const PairList::Layer& l : packed.layers())
-      for (const std::uint16_t code : l.packed)
-        backJumps += (code & 255u) == 0 && code != 0 && static_cast<std::int8_t>(code >> 8) < 0 ? 1 : 0;
-    EXPECT_GT(backJumps, 0u);
+    std::size_t codes = 0, windows = 0;
+    for (const PairList::Layer& l : packed.layers()) {
+      codes += l.packed.size();
+      for (const std::uint16_t code : l.packed) windows += code != 0 && !PairList::Layer::isJump(code) ? 1 : 0;
+    }
+    EXPECT_LE(static_cast<double>(codes), static_cast<double>(windows) + 2.1 * static_cast<double>(s.size()));
+    std::size_t flung = 0;
+    while (flung < s.size() && s.px[flung] < 1e5f) ++flung;
+    ASSERT_LT(flung, s.size());
+    EXPECT_TRUE(packed.partners(flung).empty());
     ++checked;
   }
   EXPECT_GE(checked, 1);
 }
 
 // The LJ liquid's packed list (fcc at reduced density 0.8442, cutoff 2.5, 13,500
-// atoms, layers of over 300 groups): 2 bytes a listed group, with a jump and an end code
-// a slot and an eighth of spare capacity at most: under 34 bytes an atom, where 32-bit
-// entries and row starts took 53 (the budget for a whole simulation is 100).
-TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAGroup) {
+// atoms, layers of over 300 groups): 2 bytes a window, fewer windows than aligned
+// groups, a jump and an end code a slot and an eighth of spare capacity at most: under
+// 30 bytes an atom, where 32-bit aligned groups and row starts took 53 (the issue's
+// budget for a whole simulation is 100).
+TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
   const forces::InteractionTable table = ljTable(1.0, 2.5);
   const float a = std::cbrt(4.0f / 0.8442f);  // the fcc cell
   ParticleStore s;
@@ -872,46 +879,67 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAGroup) {
   PairList list;
   list.build(grid, table, s, skin);
   ASSERT_TRUE(list.grouped());
-  std::size_t codes = 0, groups = 0, capacity = 0;
+  std::size_t codes = 0, windows = 0, capacity = 0;
   for (const PairList::Layer& l : list.layers()) {
     ASSERT_TRUE(l.isPacked());
     EXPECT_TRUE(l.start.empty());
     codes += l.packed.size();
     capacity += l.packed.capacity();
-    for (const std::uint16_t code : l.packed) groups += (code & 255u) != 0 ? 1 : 0;
+    for (const std::uint16_t code : l.packed) windows += code != 0 && !PairList::Layer::isJump(code) ? 1 : 0;
+  }
+  // The aligned groups of 8 that the same partners fall in, per slot.
+  std::size_t aligned = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    std::vector<std::uint32_t> groups;
+    for (const std::uint32_t j : list.partners(i)) groups.push_back(j / 8);
+    std::sort(groups.begin(), groups.end());
+    aligned += static_cast<std::size_t>(std::unique(groups.begin(), groups.end()) - groups.begin());
   }
   const auto n = static_cast<double>(s.size());
   EXPECT_GT(static_cast<double>(list.pairCount()) / n, 30.0);  // a dense liquid: about 35 partners
-  EXPECT_LE(static_cast<double>(codes), static_cast<double>(groups) + 2.1 * n);  // a jump and an end a slot
+  // Windows that start at a partner need fewer than aligned groups (9.5 against 11 a
+  // particle when this test was written).
+  EXPECT_LT(static_cast<double>(windows), 0.92 * static_cast<double>(aligned));
+  EXPECT_LE(static_cast<double>(codes), static_cast<double>(windows) + 2.1 * n);  // a jump and an end a slot
   EXPECT_LE(static_cast<double>(capacity), 1.15 * static_cast<double>(codes));
-  EXPECT_LT(2.0 * static_cast<double>(capacity) / n, 34.0);
+  EXPECT_LT(2.0 * static_cast<double>(capacity) / n, 30.0);
 }
 
-// A packed layer's codes, written by hand: steps, a jump ahead, a jump back, the end of
-// each slot; decoded into partners.
+// A packed layer's codes, written by hand: windows, a jump ahead, a jump back, the end
+// of each slot; decoded into partners.
 TEST(PairList, PackedCodesDecodeIntoPartners) {
-  PairList::Layer layer;
+  using Layer = PairList::Layer;
+  Layer layer;
   layer.grouped = true;
   layer.narrow = true;
-  layer.slots = {16, 18};  // own groups 2 and 2 counted from slot 0
+  layer.slots = {16, 18};  // slot 16's walk starts at 9
   layer.span = {16, 20000};
-  const auto code = [](std::uint32_t step, std::uint32_t lanes) { return static_cast<std::uint16_t>(step << 8 | lanes); };
-  const auto jump = [](std::int32_t units) { return static_cast<std::uint16_t>((static_cast<std::uint32_t>(units) & 255u) << 8); };
-  layer.packed = {code(0, 0b110),  // slot 16: group 2, slots 17 and 18
-                  code(3, 0b1),    // group 5: slot 40
-                  jump(10),        // group 5 + 320
-                  code(2, 0b10000000),  // group 327: slot 2623
-                  jump(-5),        // group 327 - 160 = 167
-                  code(255, 0b1),  // group 422: slot 3376
+  // A window `step` slots on; field bit c - 1: its lane c (lane 0 always) is a partner.
+  const auto window = [](std::uint32_t step, std::uint32_t field) { return static_cast<std::uint16_t>(step << 7 | field); };
+  const auto jump = [](std::int32_t units) { return static_cast<std::uint16_t>(1u << 7 | (static_cast<std::uint32_t>(units) & 127u)); };
+  layer.packed = {window(8, 0b1),          // slot 17 and lane 1: 18
+                  window(23, 0),           // 40
+                  jump(10),                // 40 + 2,560
+                  window(30, 0b1000000),   // 2,630 and lane 7: 2,637
+                  jump(-5),                // 2,630 - 1,280
+                  window(511, 0),          // 1,861
                   0,
                   0};  // slot 17: no partners
+  EXPECT_TRUE(Layer::isJump(jump(-64)));
+  EXPECT_TRUE(Layer::isJump(jump(63)));
+  EXPECT_FALSE(Layer::isJump(window(8, 0)));
+  EXPECT_FALSE(Layer::isJump(0));
+  EXPECT_EQ(static_cast<std::int32_t>(Layer::jumpOf(jump(-64))), -64 * Layer::kJumpSlots);
+  EXPECT_EQ(static_cast<std::int32_t>(Layer::jumpOf(jump(63))), 63 * Layer::kJumpSlots);
+  EXPECT_EQ(Layer::windowLanes(window(9, 0b1000001)), 0b10000011u);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
   layer.forEachPair([&](std::uint32_t k, std::uint32_t j) { got.emplace_back(k, j); });
-  const std::vector<std::pair<std::uint32_t, std::uint32_t>> want = {{0, 17}, {0, 18}, {0, 40}, {0, 2623}, {0, 3376}};
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> want = {{0, 17},   {0, 18},   {0, 40},
+                                                                     {0, 2630}, {0, 2637}, {0, 1861}};
   EXPECT_EQ(got, want);
   std::vector<std::uint32_t> of0;
   layer.forEachPartner(0, [&](std::uint32_t j) { of0.push_back(j); });
-  EXPECT_EQ(of0, (std::vector<std::uint32_t>{17, 18, 40, 2623, 3376}));
+  EXPECT_EQ(of0, (std::vector<std::uint32_t>{17, 18, 40, 2630, 2637, 1861}));
   std::size_t of1 = 0;
   layer.forEachPartner(1, [&](std::uint32_t) { ++of1; });
   EXPECT_EQ(of1, 0u);
