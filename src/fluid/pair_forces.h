@@ -54,7 +54,8 @@ class PairList {
   /// Partners of slot i, as slots (finds i's layer and copies: for tests, not hot loops).
   [[nodiscard]] std::vector<std::uint32_t> partners(std::size_t i) const;
   /// Calls fn(i, j) for every listed pair, slot i ascending, each i's partners in list
-  /// order (grouped layers: group by group, each group's slots ascending).
+  /// order (grouped layers: window by window or group by group, each one's slots
+  /// ascending).
   template <class Fn>
   void forEachPair(Fn&& fn) const {
     for (std::size_t l = 0; l < layerCount_; ++l) {
@@ -90,15 +91,15 @@ class PairList {
   /// more (windows of one run of ascending groups do not overlap), so codes whose step
   /// is below 8 are special: jump codes (step 1, the low 7 bits a signed count of
   /// kJumpSlots slots) bring the next window 8 to 263 slots ahead where it would be
-  /// further than 511 or behind (the walk's slot counts modulo 2^32), and a code 0 ends
-  /// the slot. Each window starts at the lowest partner not yet in a window (greedy),
+  /// less than 8 or more than 511 slots on (the walk's slot counts modulo 2^32), and a
+  /// code 0 ends the slot. Each window starts at the lowest partner not yet in a window (greedy),
   /// which needs about a sixth fewer windows than aligned groups of 8 (9.5 against 11.4
   /// a particle in the LJ liquid): the kernel's cost is per window. Why codes:
   /// consecutive windows of a slot are near each other (the rest of its cell, then rows
   /// of neighbouring cells), so a step fits 9 bits but for the jump to the next layer,
   /// and the kernel walks each layer's slots in order anyway: 2 bytes a window and 4 a
-  /// slot (about 24 bytes a particle in the LJ liquid, against 53 for 32-bit entries
-  /// with row starts), which keeps the whole simulation under 100 bytes a particle.
+  /// slot (11.3 codes, about 23 bytes a particle in the LJ liquid, against 53 for 32-bit
+  /// entries with row starts), which keeps the whole simulation under 100 bytes a particle.
   /// Wide grouped layers keep one 32-bit entry g << 8 | lanes per aligned group, with
   /// `start`, and the kernel adds their forces straight to the store.
   struct Layer {
@@ -118,8 +119,8 @@ class PairList {
       return narrow ? slots.begin + near[q] : far[q];
     }
     /// Calls fn(k, j) for each partner j of each slot slots.begin + k, k ascending, each
-    /// slot's partners in list order (grouped layers: group by group, each group's slots
-    /// ascending).
+    /// slot's partners in list order (grouped layers: window by window or group by group,
+    /// each one's slots ascending).
     template <class Fn>
     void forEachPair(Fn&& fn) const {
       const std::uint32_t rows = slots.end - slots.begin;

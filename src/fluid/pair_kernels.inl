@@ -194,9 +194,9 @@ inline std::uint32_t laneRange(std::uint32_t g8, std::uint32_t b, std::uint32_t 
   return (0xFFu << from) & (0xFFu >> (8 - to));
 }
 
-// The positions of the store's group of 8 slots from `first` (a multiple of 8), the
-// slots past the store's end as 0: its last, partial group, for the list build and the
-// kernel, which read whole groups (the padding lanes are never partners).
+// The positions of the store's 8 slots from `first`, the slots past the store's end as
+// 0: its last, partial group or window, for the list build and the kernel, which read
+// 8 slots at a time (the padding lanes are never partners).
 inline void paddedGroup(const ParticleStore& s, std::uint32_t first, float (&x)[8], float (&y)[8], float (&z)[8]) {
   const auto n = static_cast<std::uint32_t>(s.size());
   for (std::uint32_t c = 0; c < 8; ++c) {
@@ -273,8 +273,8 @@ inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float c
 
 // Slot i's aligned groups (listAligned's entries, `count` of them, counted from slot
 // lo) as packed window codes (PairList::Layer::packed) from out[at] on, without the end
-// code; returns the new length. Room: 6 codes per entry and one more (a window per
-// entry at most, each after up to 5 jumps; one code is written to past the end).
+// code; returns the new length. Room: 6 codes per entry (a window per entry at most,
+// each after up to 5 jumps in a narrow layer's span); fillPacked adds one for the end.
 // Greedy: a window starts at the lowest partner not yet in one and takes the partners
 // among its 8 slots. A window that starts at lane `off` of group g covers lanes off
 // and up of g and the lanes below off of g + 1, so each entry either adds to the last
@@ -850,8 +850,8 @@ inline void sumLanes(const Vf* x, const Vf* y, const Vf* z, float out[3]) {
 // kSums, three read-modify-writes of a buffer in the same layout, whatever its number
 // of partners (about 3 of 8 in a dense liquid).
 // kSums (narrow, packed layers): the forces are summed in `sums` (3 arrays x, y, z of
-// `stride` floats over the layer's span, from its first slot rounded down to 8, with 8
-// to spare past its end) and added to the store after the layer, in slot order;
+// `stride` floats over the layer's span, from its first slot rounded down to 8, with at
+// least 7 to spare past its end for a window from its last slot) and added to the store after the layer, in slot order;
 // otherwise (layers whose pairs reach across the grid's wrap) straight to the store,
 // partner by partner. Each slot's sum runs in a fixed order: pair by pair in list
 // order, i's own sum (its 8 lanes added in a fixed order) after its last pair; the same

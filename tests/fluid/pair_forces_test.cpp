@@ -758,11 +758,10 @@ PairList expectPackedListsThePlainPairs(const forces::InteractionTable& table, P
   return packed;
 }
 
-// Packed grouped lists where their codes must jump: layers of thousands of slots, whose
-// next layer's rows lie more than 255 groups on, and cells so dense that one candidate
-// range spans more than 224 groups (written group by group). Each lists exactly the
-// plain list's pairs (no pair twice), and the kernel matches the reference, in both
-// copies.
+// Packed lists where their codes must jump: layers of thousands of slots, whose next
+// layer's rows lie more than 511 slots on, and cells so dense that one candidate range
+// spans hundreds of groups. Each lists exactly the plain list's pairs (no pair twice),
+// and the kernel matches the reference, in both copies.
 TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
   const RestoreSimd restore;
   const float skin = 0.3f, cell = 2.3f;
@@ -787,8 +786,8 @@ TEST(ClosedForm, PackedListsJumpToFarRowsAndWalkDenseCells) {
   ParticleStore dense = lattice(14, 14, 13, 0.11f, 43);
   const forces::InteractionTable denseTable = ljTable(0.05, 2.0);
   // One cell: a particle in a corner, 2,744 beyond its reach in the opposite one, then
-  // 100 around it. Its first partner lies 343 groups on in a range of 356: a jump in
-  // the group by group walk.
+  // 100 around it. Its first partner lies 343 groups (2,744 slots) on in a range of
+  // 356: jumps before its first window.
   ParticleStore gap;
   gap.add(2.29f, 2.29f, 2.29f, 0, 0, 0, 0, 0);
   for (const auto& [block, at] : {std::pair{lattice(14, 14, 14, 0.06f, 45), 0.05f}, std::pair{lattice(5, 5, 4, 0.1f, 46), 1.8f}})
@@ -887,14 +886,26 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
     capacity += l.packed.capacity();
     for (const std::uint16_t code : l.packed) windows += code != 0 && !PairList::Layer::isJump(code) ? 1 : 0;
   }
-  // The aligned groups of 8 that the same partners fall in, per slot.
-  std::size_t aligned = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    std::vector<std::uint32_t> groups;
-    for (const std::uint32_t j : list.partners(i)) groups.push_back(j / 8);
-    std::sort(groups.begin(), groups.end());
-    aligned += static_cast<std::size_t>(std::unique(groups.begin(), groups.end()) - groups.begin());
+  // Per slot, from its partners sorted: the aligned groups of 8 they fall in, and the
+  // greedy windows (each from the lowest partner not yet in one) the list should hold.
+  std::vector<std::vector<std::uint32_t>> partners(s.size());
+  list.forEachPair([&](std::uint32_t i, std::uint32_t j) { partners[i].push_back(j); });
+  std::size_t aligned = 0, greedy = 0;
+  for (std::vector<std::uint32_t>& p : partners) {
+    std::sort(p.begin(), p.end());
+    std::int64_t groupSeen = -1, windowEnd = -1;
+    for (const std::uint32_t j : p) {
+      if (static_cast<std::int64_t>(j / 8) != groupSeen) {
+        ++aligned;
+        groupSeen = j / 8;
+      }
+      if (static_cast<std::int64_t>(j) >= windowEnd) {
+        ++greedy;
+        windowEnd = static_cast<std::int64_t>(j) + 8;
+      }
+    }
   }
+  EXPECT_EQ(windows, greedy);
   const auto n = static_cast<double>(s.size());
   EXPECT_GT(static_cast<double>(list.pairCount()) / n, 30.0);  // a dense liquid: about 35 partners
   // Windows that start at a partner need fewer than aligned groups (9.5 against 11 a
