@@ -92,9 +92,9 @@ class PairList {
   /// is below 8 are special: jump codes (step 1, the low 7 bits a signed count of
   /// kJumpSlots slots) bring the next window 8 to 263 slots ahead where it would be
   /// less than 8 or more than 511 slots on (the walk's slot counts modulo 2^32), and a
-  /// code 0 ends the slot. Each window starts at the lowest partner not yet in a window (greedy),
-  /// which needs about a sixth fewer windows than aligned groups of 8 (9.5 against 11.4
-  /// a particle in the LJ liquid): the kernel's cost is per window. Why codes:
+  /// code 0 ends the slot. Each window starts at the lowest partner not yet in a window
+  /// (greedy), which needs about a sixth fewer windows than aligned groups of 8 (9.5
+  /// against 11.4 a particle in the LJ liquid): the kernel's cost is per window. Why codes:
   /// consecutive windows of a slot are near each other (the rest of its cell, then rows
   /// of neighbouring cells), so a step fits 9 bits but for the jump to the next layer,
   /// and the kernel walks each layer's slots in order anyway: 2 bytes a window and 4 a

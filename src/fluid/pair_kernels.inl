@@ -188,12 +188,6 @@ inline void copyCandidates(const float* __restrict px, const float* __restrict p
   }
 }
 
-// The 8 lanes of the aligned group of slots [8 g, 8 g + 8) that lie in [b, e).
-inline std::uint32_t laneRange(std::uint32_t g8, std::uint32_t b, std::uint32_t e) {
-  const std::uint32_t from = b > g8 ? b - g8 : 0, to = e < g8 + 8 ? e - g8 : 8;
-  return (0xFFu << from) & (0xFFu >> (8 - to));
-}
-
 // The positions of the store's 8 slots from `first`, the slots past the store's end as
 // 0: its last, partial group or window, for the list build and the kernel, which read
 // 8 slots at a time (the padding lanes are never partners).
@@ -220,33 +214,17 @@ inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, 
   return nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
 }
 
-// A grouped layer's list (PairList::Layer::grouped) for slot i: the groups of 8 slots
-// that hold its partners among [b, e) (one candidate range: the rest of i's cell, or a
-// forward range), counted from the layer's first group `lo` (a slot, multiple of 8),
-// each with the lanes that are partners, written from out[listed] on;
-// returns the new length. out has room for one entry per group the range touches. The
+// A grouped layer's list (PairList::Layer::grouped) for slot i: the aligned groups of 8
+// slots that hold its partners among [b, e) (one candidate range: the rest of i's cell,
+// or a forward range), each as (g - lo / 8) << 8 | the lanes that are partners, from
+// out[at] on (at most one per group the range touches); returns the new length. Wide
+// layers keep these entries, packed ones turn them into windows (packWindows). The
 // groups are tested straight from the store's arrays, 8 slots at a time with the same
 // distance test as filter(), so a grouped list lists exactly the pairs a plain one
 // does. A group that two ranges share (one ends and the next begins inside it) is
-// listed twice with disjoint lanes: each pair is still evaluated once.
-inline std::uint32_t listGroups(const ParticleStore& s, std::uint32_t i, float cut2, std::uint32_t b, std::uint32_t e,
-                                std::uint32_t lo, std::uint32_t* __restrict out, std::uint32_t listed) {
-  const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
-  const auto n = static_cast<std::uint32_t>(s.size());
-  const Candidates store{s.px.data(), s.py.data(), s.pz.data(), nullptr, nullptr};
-  for (std::uint32_t g8 = b & ~7u; g8 < e; g8 += 8) {
-    const std::uint32_t lanes = groupNear(s, store, n, g8, xi, yi, zi, cut2) & laneRange(g8, b, e);
-    out[listed] = (g8 - lo) << 5 | lanes;  // ((g8 - lo) / 8) << 8
-    listed += lanes != 0 ? 1u : 0u;
-  }
-  return listed;
-}
-
-// Slot i's aligned groups of 8 among the candidates [b, e) (one candidate range: the
-// rest of i's cell, or a forward range), for packWindows: as listGroups, each group
-// that holds a partner as (g - lo / 8) << 8 | lanes from out[at] on (at most one per
-// group the range touches); returns the new length. The lanes of [b, e) in the range's
-// first and last group are found once (laneRange per group was a fifth of the loop),
+// listed twice with disjoint lanes: each pair is still evaluated once. The lanes of
+// [b, e) in the range's first and last group are found once (per group they were a
+// fifth of the loop),
 // and the loop has no branch per group: GCC otherwise kept the length in memory and
 // branched on every group (twice the build's time). Inlined into the layer's loop (GCC
 // stopped doing so by itself when groupNear was shared: a call per range, 6 a slot).
@@ -407,7 +385,7 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
     return listed;
   };
   // Grouped: no candidate buffer; each candidate range is tested group by group in the
-  // store (listGroups). Rigid bodies never make a grouped list (one fluid), so no owners.
+  // store (listAligned). Rigid bodies never make a grouped list (one fluid), so no owners.
   auto fillGroups = [&](std::vector<std::uint32_t>& out) {
     const std::uint32_t lo = layer.span.begin & ~7u;
     out.resize(out.capacity());
@@ -424,9 +402,9 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
         layer.start[i - layer.slots.begin] = listed;
         if (out.size() < listed + most) grow(out, listed + most);
         const float cut2 = rowCut2[s.material[i]];
-        listed = listGroups(s, i, cut2, i + 1, own.end, lo, out.data(), listed);
+        listed = listAligned(s, i, cut2, i + 1, own.end, lo, out.data(), listed);
         for (const neighbors::SlotRange& r : forward)
-          listed = listGroups(s, i, cut2, r.begin, r.end, lo, out.data(), listed);
+          listed = listAligned(s, i, cut2, r.begin, r.end, lo, out.data(), listed);
       }
     }
     out.resize(listed);
@@ -851,11 +829,11 @@ inline void sumLanes(const Vf* x, const Vf* y, const Vf* z, float out[3]) {
 // of partners (about 3 of 8 in a dense liquid).
 // kSums (narrow, packed layers): the forces are summed in `sums` (3 arrays x, y, z of
 // `stride` floats over the layer's span, from its first slot rounded down to 8, with at
-// least 7 to spare past its end for a window from its last slot) and added to the store after the layer, in slot order;
-// otherwise (layers whose pairs reach across the grid's wrap) straight to the store,
-// partner by partner. Each slot's sum runs in a fixed order: pair by pair in list
-// order, i's own sum (its 8 lanes added in a fixed order) after its last pair; the same
-// whatever the number of threads.
+// least 7 to spare past its end for a window from its last slot) and added to the
+// store after the layer, in slot order; otherwise (layers whose pairs reach across the
+// grid's wrap) straight to the store, partner by partner. Each slot's sum runs in a
+// fixed order: pair by pair in list order, i's own sum (its 8 lanes added in a fixed
+// order) after its last pair; the same whatever the number of threads.
 template <bool kSums>
 void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
                        float* __restrict sums, std::size_t stride) {
@@ -883,8 +861,9 @@ void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj&
     const std::uint32_t i = layer.slots.begin + k;
     const Vf xi = Vf{} + s.px[i], yi = Vf{} + s.py[i], zi = Vf{} + s.pz[i];
     Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
-    // The 8 slots from w, whose positions are at xs, ys, zs; partnerLanes: their lanes
-    // as all-ones or zero; bits: the same as bits (wide layers' scatter).
+    // The 8 slots from w, whose positions are at xs, ys, zs; partnerLanes: the partner
+    // lanes as all-ones or zero; bits: the same lanes as a bit mask (wide layers'
+    // scatter; unused in packed ones).
     const auto window = [&](const float* xs, const float* ys, const float* zs, const std::int32_t* partnerLanes,
                             std::uint32_t bits, std::uint32_t w) {
       for (std::uint32_t h = 0; h < kParts; ++h) {
