@@ -748,6 +748,14 @@ inline Vf loadV(const float* p) {
   return v;
 }
 inline void storeV(float* p, Vf v) { std::memcpy(p, &v, sizeof v); }
+// x in every lane (one broadcast from memory; Vf{} + x would add 0 first).
+inline Vf splat(float x) {
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+  return _mm256_set1_ps(x);
+#else
+  return Vf{x, x, x, x};
+#endif
+}
 // b < a ? a : b per lane (b where either is NaN): one instruction (maxps) where the
 // compiler would otherwise compare and blend.
 inline Vf atLeast(Vf a, Vf b) {
@@ -818,148 +826,188 @@ inline void sumLanes(const Vf* x, const Vf* y, const Vf* z, float out[3]) {
 #endif
 }
 
-// The pairs of one grouped layer (PairList::Layer::grouped) with the true Lennard-Jones
+// The Lennard-Jones force over r of 8 lanes (kParts parts) at offsets (dx, dy, dz) from
+// i, exactly 0 in the lanes that are not partners (partnerLanes: all-ones or zero) or
+// lie beyond the cutoff. The one copy of the arithmetic both grouped kernels use.
+struct LjLanes {
+  Vf a, minusB, sigma2, cutoff2, minR2;
+  explicit LjLanes(const forces::ClosedFormLj& lj)
+      : a(splat(lj.a)), minusB(splat(-lj.b)), sigma2(splat(lj.sigma2)), cutoff2(splat(lj.cutoff2)),
+        minR2(splat(lj.minR2)) {}
+  [[nodiscard]] Vf forceOverR(Vf dx, Vf dy, Vf dz, const std::int32_t* partnerLanes) const {
+    const Vf r2 = fused(dz, dz, fused(dy, dy, dx * dx));
+    Vi partner;
+    std::memcpy(&partner, partnerLanes, sizeof partner);
+    const Vi in = partner & (r2 < cutoff2);
+#ifdef EXP_B
+    const Vf u = sigma2 * atLeast(minR2, r2);
+#else
+    const Vf u = sigma2 / atLeast(minR2, r2);
+#endif
+    // a u³ as (a u) u², so that a u and u² run side by side: one multiplication fewer
+    // on the chain that bounds this loop (docs/benchmarks.md).
+    const Vf au = a * u, u2 = u * u;
+    const Vf u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
+    return fused(au, u2, minusB) * u4;  // F(r) / r
+  }
+};
+
+// The pairs of one packed layer (PairList::Layer::isPacked) with the true Lennard-Jones
 // force in closed form (InteractionTable::closedFormLj): per slot i, each listed window
-// of 8 slots (packed layers) or aligned group of 8 (wide ones) is evaluated in 8-lane
-// arithmetic straight from the store's position arrays (no gather, no table), the
-// lanes that are not partners or lie beyond the cutoff masked to exactly 0. Why: the
-// table kernel spends most of its instructions gathering a partner's position and
-// scattering its force (docs/benchmarks.md); here a window costs three loads and, with
-// kSums, three read-modify-writes of a buffer in the same layout, whatever its number
-// of partners (about 3 of 8 in a dense liquid).
-// kSums (narrow, packed layers): the forces are summed in `sums` (3 arrays x, y, z of
-// `stride` floats over the layer's span, from its first slot rounded down to 8, with at
-// least 7 to spare past its end for a window from its last slot) and added to the
-// store after the layer, in slot order; otherwise (layers whose pairs reach across the
-// grid's wrap) straight to the store, partner by partner. Each slot's sum runs in a
-// fixed order: pair by pair in list order, i's own sum (its 8 lanes added in a fixed
-// order) after its last pair; the same whatever the number of threads.
-template <bool kSums>
-void groupedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
-                       float* __restrict sums, std::size_t stride) {
-  const auto n = static_cast<std::uint32_t>(s.size());
+// of 8 slots is evaluated in 8-lane arithmetic straight from position arrays (no
+// gather, no table), the lanes that are not partners or lie beyond the cutoff masked to
+// exactly 0. Why: the table kernel spends most of its instructions gathering a
+// partner's position and scattering its force (docs/benchmarks.md); here a window costs
+// three loads and three read-modify-writes of a buffer in the same layout, whatever its
+// number of partners (about 3 of 8 in a dense liquid).
+// Every array is indexed by slot - lo (lo: the layer's first span slot rounded down to
+// 8), so that a window's address is one register plus the walk's slot count: qx, qy, qz
+// the positions and sums the forces (3 arrays x, y, z of `stride` floats), each
+// readable over [0, stride), which reaches at least 7 slots past the span's end (a
+// window from its last slot). The forces are added to the store after the layer, in
+// slot order. Each slot's sum runs in a fixed order: pair by pair in list order, i's
+// own sum (its 8 lanes added in a fixed order) after its last pair; the same whatever
+// the number of threads.
+void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
+                      const float* __restrict qx, const float* __restrict qy, const float* __restrict qz,
+                      float* __restrict sums, std::size_t stride) {
   const std::uint32_t lo = layer.span.begin & ~7u;
-  const float* __restrict px = s.px.data();
-  const float* __restrict py = s.py.data();
-  const float* __restrict pz = s.pz.data();
   Force* __restrict f = s.f.data();
-  // kSums layers are packed: codes, walked slot after slot; the others keep 32-bit
-  // groups with row starts (PairList::Layer).
-  const std::uint32_t* __restrict start = layer.start.data();
-  const std::uint32_t* __restrict groups = layer.groups.data();
   const std::uint16_t* __restrict code = layer.packed.data();
   float* __restrict sx = sums;
   float* __restrict sy = sums + stride;
   float* __restrict sz = sums + 2 * stride;
-  if constexpr (kSums)
-    for (std::size_t t = 0; t < 3 * stride; ++t) sums[t] = 0.0f;
-  const Vf a = Vf{} + lj.a, minusB = Vf{} - lj.b, sigma2 = Vf{} + lj.sigma2;
-  const Vf cutoff2 = Vf{} + lj.cutoff2, minR2 = Vf{} + lj.minR2;
-  float tx[8], ty[8], tz[8];  // the store's last slots, padded
+  for (std::size_t t = 0; t < 3 * stride; ++t) sums[t] = 0.0f;
+  const LjLanes ljv(lj);
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
   for (std::uint32_t k = 0; k < rows; ++k) {
-    const std::uint32_t i = layer.slots.begin + k;
-    const Vf xi = Vf{} + s.px[i], yi = Vf{} + s.py[i], zi = Vf{} + s.pz[i];
+    const std::ptrdiff_t iv = static_cast<std::ptrdiff_t>(layer.slots.begin + k) - lo;
+    const Vf xi = splat(qx[iv]), yi = splat(qy[iv]), zi = splat(qz[iv]);
     Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
-    // The 8 slots from w, whose positions are at xs, ys, zs; partnerLanes: the partner
-    // lanes as all-ones or zero; bits: the same lanes as a bit mask (wide layers'
-    // scatter; unused in packed ones).
-    const auto window = [&](const float* xs, const float* ys, const float* zs, const std::int32_t* partnerLanes,
-                            std::uint32_t bits, std::uint32_t w) {
+    // The window's first slot - lo; starts at i - 7, as PairList::Layer::packed counts
+    // (which is modulo 2^32: here signed, the same slots).
+    std::ptrdiff_t v = iv - 7;
+    for (std::uint32_t e = *code++; e != 0; e = *code++) {
+      if (!PairList::Layer::isWindow(e)) [[unlikely]] {  // a jump (e is not 0)
+        v += static_cast<std::int32_t>(PairList::Layer::jumpOf(e));
+        continue;
+      }
+      v += e >> PairList::Layer::kStepShift;
+      const std::int32_t* partnerLanes = kWindowMasks.lanes[e & 127u];
       for (std::uint32_t h = 0; h < kParts; ++h) {
-        const std::uint32_t o = h * kLanes;
-        const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
-        const Vf r2 = fused(dz, dz, fused(dy, dy, dx * dx));
-        Vi partner;
-        std::memcpy(&partner, partnerLanes + o, sizeof partner);
-        const Vi in = partner & (r2 < cutoff2);
-        const Vf u = sigma2 / atLeast(minR2, r2);
-        // a u³ as (a u) u², so that a u and u² run side by side: one multiplication
-        // fewer on the chain that bounds this loop (docs/benchmarks.md).
-        const Vf au = a * u, u2 = u * u;
-        const Vf u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
-        const Vf fr = fused(au, u2, minusB) * u4;  // F(r) / r
-        // The force on j is fr * (dx, dy, dz): added to i's sums and (packed layers) to
-        // j's, each rounded once; wide layers add the rounded product to j.
+#ifdef EXP_D
+        const std::ptrdiff_t at = (v & ~std::ptrdiff_t{7}) + h * kLanes;
+#else
+        const std::ptrdiff_t at = v + h * kLanes;
+#endif
+        const Vf dx = loadV(qx + at) - xi, dy = loadV(qy + at) - yi, dz = loadV(qz + at) - zi;
+        const Vf fr = ljv.forceOverR(dx, dy, dz, partnerLanes + h * kLanes);
+        // The force on j is fr * (dx, dy, dz): added to i's sums and to j's, each
+        // rounded once.
         ax[h] = fused(fr, dx, ax[h]);
         ay[h] = fused(fr, dy, ay[h]);
         az[h] = fused(fr, dz, az[h]);
-        if constexpr (kSums) {
-          const std::size_t at = w - lo + o;
-          storeV(sx + at, fused(fr, dx, loadV(sx + at)));
-          storeV(sy + at, fused(fr, dy, loadV(sy + at)));
-          storeV(sz + at, fused(fr, dz, loadV(sz + at)));
-        } else {
-          const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;
-          for (std::uint32_t c = 0; c < kLanes; ++c)
-            if ((bits >> (o + c)) & 1u) {
-              f[w + o + c].x += gx[c];
-              f[w + o + c].y += gy[c];
-              f[w + o + c].z += gz[c];
-            }
-        }
-      }
-    };
-    const auto evaluate = [&](const std::int32_t* partnerLanes, std::uint32_t bits, std::uint32_t w) {
-      if (w + 8 <= n) [[likely]] {  // straight from the store
-        window(px + w, py + w, pz + w, partnerLanes, bits, w);
-        return;
-      }
-      paddedGroup(s, w, tx, ty, tz);  // the store's last slots
-      window(tx, ty, tz, partnerLanes, bits, w);
-    };
-    if constexpr (kSums) {
-      std::uint32_t w = i - 7;  // modulo 2^32, as PairList::Layer::packed counts
-      for (std::uint32_t e = *code++; e != 0; e = *code++) {
-        if (!PairList::Layer::isWindow(e)) [[unlikely]] {  // a jump (e is not 0)
-          w += PairList::Layer::jumpOf(e);
-          continue;
-        }
-        w += e >> PairList::Layer::kStepShift;
-        evaluate(kWindowMasks.lanes[e & 127u], 0, w);
-      }
-    } else {
-      for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
-        const std::uint32_t e = groups[q];
-        evaluate(kLaneMasks.lanes[e & 255u], e & 255u, lo + (e >> 8) * 8);
+#ifdef EXP_A
+#else
+        storeV(sx + at, fused(fr, dx, loadV(sx + at)));
+        storeV(sy + at, fused(fr, dy, loadV(sy + at)));
+        storeV(sz + at, fused(fr, dz, loadV(sz + at)));
+#endif
       }
     }
     float own[3];
     sumLanes(ax, ay, az, own);
-    if constexpr (kSums) {
-      sx[i - lo] -= own[0];
-      sy[i - lo] -= own[1];
-      sz[i - lo] -= own[2];
-    } else {
-      f[i].x -= own[0];
-      f[i].y -= own[1];
-      f[i].z -= own[2];
-    }
+    sx[iv] -= own[0];
+    sy[iv] -= own[1];
+    sz[iv] -= own[2];
   }
-  if constexpr (kSums)
-    for (std::uint32_t t = layer.span.begin; t < layer.span.end; ++t) {
-      f[t].x += sx[t - lo];
-      f[t].y += sy[t - lo];
-      f[t].z += sz[t - lo];
-    }
+  for (std::uint32_t t = layer.span.begin; t < layer.span.end; ++t) {
+    f[t].x += sx[t - lo];
+    f[t].y += sy[t - lo];
+    f[t].z += sz[t - lo];
+  }
 }
 
-// The kernel for one layer, in its list encoding. sums: the thread's buffer for the
+// The pairs of one wide grouped layer (grouped, not narrow: very large layers, some
+// across the grid's wrap) in closed form: per slot i, each listed aligned group of 8
+// evaluated as packedPairForces does a window, the forces added straight to the store,
+// partner by partner, in list order, i's own sum after its last pair.
+void widePairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s) {
+  const auto n = static_cast<std::uint32_t>(s.size());
+  const std::uint32_t lo = layer.span.begin & ~7u;
+  Force* __restrict f = s.f.data();
+  const std::uint32_t* __restrict start = layer.start.data();
+  const std::uint32_t* __restrict groups = layer.groups.data();
+  const LjLanes ljv(lj);
+  float tx[8], ty[8], tz[8];  // the store's last slots, padded
+  const std::uint32_t rows = layer.slots.end - layer.slots.begin;
+  for (std::uint32_t k = 0; k < rows; ++k) {
+    const std::uint32_t i = layer.slots.begin + k;
+    const Vf xi = splat(s.px[i]), yi = splat(s.py[i]), zi = splat(s.pz[i]);
+    Vf ax[kParts] = {}, ay[kParts] = {}, az[kParts] = {};
+    for (std::uint32_t q = start[k]; q < start[k + 1]; ++q) {
+      const std::uint32_t e = groups[q];
+      const std::uint32_t bits = e & 255u, w = lo + (e >> 8) * 8;
+      const float *xs = s.px.data() + w, *ys = s.py.data() + w, *zs = s.pz.data() + w;
+      if (w + 8 > n) [[unlikely]] {
+        paddedGroup(s, w, tx, ty, tz);
+        xs = tx;
+        ys = ty;
+        zs = tz;
+      }
+      for (std::uint32_t h = 0; h < kParts; ++h) {
+        const std::uint32_t o = h * kLanes;
+        const Vf dx = loadV(xs + o) - xi, dy = loadV(ys + o) - yi, dz = loadV(zs + o) - zi;
+        const Vf fr = ljv.forceOverR(dx, dy, dz, kLaneMasks.lanes[bits] + o);
+        ax[h] = fused(fr, dx, ax[h]);
+        ay[h] = fused(fr, dy, ay[h]);
+        az[h] = fused(fr, dz, az[h]);
+        const Vf gx = fr * dx, gy = fr * dy, gz = fr * dz;
+        for (std::uint32_t c = 0; c < kLanes; ++c)
+          if ((bits >> (o + c)) & 1u) {
+            f[w + o + c].x += gx[c];
+            f[w + o + c].y += gy[c];
+            f[w + o + c].z += gz[c];
+          }
+      }
+    }
+    float own[3];
+    sumLanes(ax, ay, az, own);
+    f[i].x -= own[0];
+    f[i].y -= own[1];
+    f[i].z -= own[2];
+  }
+}
+
+// The kernel for one layer, in its list encoding. scratch: the thread's buffer for the
 // closed-form kernel, grown here as needed.
 inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s,
-                          std::vector<float>& sums) {
+                          std::vector<float>& scratch) {
   if (layer.grouped) {
     if (!table.closedFormLj()) throw std::logic_error("a grouped pair list used with a table that has no closed form");
     const forces::ClosedFormLj& lj = *table.closedFormLj();
-    if (!layer.narrow) return groupedPairForces<false>(layer, lj, s, nullptr, 0);
+    if (!layer.narrow) return widePairForces(layer, lj, s);
     // Each of x, y, z: the span from its first slot rounded down to 8, and the 7 slots
     // a window starting at its last slot reaches past it, rounded up to 8.
-    const std::size_t stride = (layer.span.end - (layer.span.begin & ~7u) + 7 + 7) / 8 * 8;
-    if (sums.size() < 3 * stride) {
-      sums.reserve(3 * stride);  // exactly: resize alone could double it (2 bytes an atom a thread)
-      sums.resize(3 * stride);
+    const std::uint32_t lo = layer.span.begin & ~7u;
+    const std::size_t stride = (layer.span.end - lo + 7 + 7) / 8 * 8;
+    // Windows read the store's arrays where it has those slots; a layer whose windows
+    // reach past the store's end (the last) reads a copy of them padded with zeros
+    // (lanes that are never partners), so that the kernel has no test per window.
+    const std::size_t n = s.size();
+    const bool copy = lo + stride > n;
+    const std::size_t need = (copy ? 6 : 3) * stride;
+    if (scratch.size() < need) {
+      scratch.reserve(need);  // exactly: resize alone could double it (2 bytes an atom a thread)
+      scratch.resize(need);
     }
-    return groupedPairForces<true>(layer, lj, s, sums.data(), stride);
+    if (!copy) return packedPairForces(layer, lj, s, s.px.data() + lo, s.py.data() + lo, s.pz.data() + lo,
+                                       scratch.data(), stride);
+    float* q = scratch.data() + 3 * stride;
+    const float* from[3] = {s.px.data(), s.py.data(), s.pz.data()};
+    for (int axis = 0; axis < 3; ++axis)
+      for (std::size_t t = 0; t < stride; ++t) q[axis * stride + t] = lo + t < n ? from[axis][lo + t] : 0.0f;
+    return packedPairForces(layer, lj, s, q, q + stride, q + 2 * stride, scratch.data(), stride);
   }
   if (layer.narrow)
     layerForces(layer, layer.near.data(), layer.slots.begin, table, s);
