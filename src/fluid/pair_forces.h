@@ -91,10 +91,11 @@ class PairList {
   /// more (windows of one run of ascending groups do not overlap), so codes whose step
   /// is below 8 are special: jump codes (step 1, the low 7 bits a signed count of
   /// kJumpSlots slots) bring the next window 8 to 263 slots ahead where it would be
-  /// less than 8 or more than 511 slots on (the walk's slot counts modulo 2^32), and a
-  /// code 0 ends the slot. Each window starts at the lowest partner not yet in a window
-  /// (greedy), which needs about a sixth fewer windows than aligned groups of 8 (9.5
-  /// against 11.4 a particle in the LJ liquid): the kernel's cost is per window. Why codes:
+  /// less than 8 or more than 511 slots on (counted modulo 2^32, or as signed offsets:
+  /// the same slots), and a code 0 ends the slot. Each window starts at the lowest
+  /// partner not yet in a window (greedy), which needs about a sixth fewer windows than
+  /// aligned groups of 8 (9.5 against 11.4 a particle in the LJ liquid): the kernel's
+  /// cost is per window. Why codes:
   /// consecutive windows of a slot are near each other (the rest of its cell, then rows
   /// of neighbouring cells), so a step fits 9 bits but for the jump to the next layer,
   /// and the kernel walks each layer's slots in order anyway: 2 bytes a window and 4 a
@@ -130,7 +131,7 @@ class PairList {
       }
       std::size_t q = 0;
       for (std::uint32_t k = 0; k < rows; ++k) {
-        std::uint32_t w = slots.begin + k - 7;  // modulo 2^32, as the kernel counts
+        std::uint32_t w = slots.begin + k - 7;  // modulo 2^32 (the kernel: signed, the same slots)
         for (std::uint32_t e = packed[q++]; e != 0; e = packed[q++]) {
           if (!isWindow(e)) {  // a jump
             w += jumpOf(e);

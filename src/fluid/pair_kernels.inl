@@ -265,7 +265,7 @@ inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, 
 inline std::uint32_t packWindows(std::uint32_t i, std::uint32_t lo, const std::uint32_t* __restrict entry,
                                  std::uint32_t count, std::uint16_t* __restrict out, std::uint32_t at) {
   using Layer = PairList::Layer;
-  std::uint32_t prev = i - 7;  // the last window's first slot, modulo 2^32 as the kernel's walk
+  std::uint32_t prev = i - 7;  // the last window's first slot, modulo 2^32 (the kernel counts signed: the same slots)
   std::uint32_t wg = UINT32_MAX - 1, off = 0;  // the last window's group (from lo) and first lane
   std::uint32_t last = at;                      // its code
   for (std::uint32_t q = 0; q < count; ++q) {
@@ -839,11 +839,7 @@ struct LjLanes {
     Vi partner;
     std::memcpy(&partner, partnerLanes, sizeof partner);
     const Vi in = partner & (r2 < cutoff2);
-#ifdef EXP_B
-    const Vf u = sigma2 * atLeast(minR2, r2);
-#else
     const Vf u = sigma2 / atLeast(minR2, r2);
-#endif
     // a u³ as (a u) u², so that a u and u² run side by side: one multiplication fewer
     // on the chain that bounds this loop (docs/benchmarks.md).
     const Vf au = a * u, u2 = u * u;
@@ -895,11 +891,7 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
       v += e >> PairList::Layer::kStepShift;
       const std::int32_t* partnerLanes = kWindowMasks.lanes[e & 127u];
       for (std::uint32_t h = 0; h < kParts; ++h) {
-#ifdef EXP_D
-        const std::ptrdiff_t at = (v & ~std::ptrdiff_t{7}) + h * kLanes;
-#else
         const std::ptrdiff_t at = v + h * kLanes;
-#endif
         const Vf dx = loadV(qx + at) - xi, dy = loadV(qy + at) - yi, dz = loadV(qz + at) - zi;
         const Vf fr = ljv.forceOverR(dx, dy, dz, partnerLanes + h * kLanes);
         // The force on j is fr * (dx, dy, dz): added to i's sums and to j's, each
@@ -907,12 +899,9 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
         ax[h] = fused(fr, dx, ax[h]);
         ay[h] = fused(fr, dy, ay[h]);
         az[h] = fused(fr, dz, az[h]);
-#ifdef EXP_A
-#else
         storeV(sx + at, fused(fr, dx, loadV(sx + at)));
         storeV(sy + at, fused(fr, dy, loadV(sy + at)));
         storeV(sz + at, fused(fr, dz, loadV(sz + at)));
-#endif
       }
     }
     float own[3];
@@ -992,8 +981,9 @@ inline void layerForcesOf(const PairList::Layer& layer, const forces::Interactio
     const std::uint32_t lo = layer.span.begin & ~7u;
     const std::size_t stride = (layer.span.end - lo + 7 + 7) / 8 * 8;
     // Windows read the store's arrays where it has those slots; a layer whose windows
-    // reach past the store's end (the last) reads a copy of them padded with zeros
-    // (lanes that are never partners), so that the kernel has no test per window.
+    // could reach past the store's end (the last, usually the one before it too, whose
+    // forward ranges end there) reads a copy of them padded with zeros (lanes that are
+    // never partners), so that the kernel has no test per window.
     const std::size_t n = s.size();
     const bool copy = lo + stride > n;
     const std::size_t need = (copy ? 6 : 3) * stride;
