@@ -840,7 +840,7 @@ TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
     std::size_t codes = 0, windows = 0;
     for (const PairList::Layer& l : packed.layers()) {
       codes += l.packed.size();
-      for (const std::uint16_t code : l.packed) windows += code != 0 && !PairList::Layer::isJump(code) ? 1 : 0;
+      for (const std::uint16_t code : l.packed) windows += PairList::Layer::isWindow(code) ? 1 : 0;
     }
     EXPECT_LE(static_cast<double>(codes), static_cast<double>(windows) + 2.1 * static_cast<double>(s.size()));
     std::size_t flung = 0;
@@ -884,7 +884,7 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
     EXPECT_TRUE(l.start.empty());
     codes += l.packed.size();
     capacity += l.packed.capacity();
-    for (const std::uint16_t code : l.packed) windows += code != 0 && !PairList::Layer::isJump(code) ? 1 : 0;
+    for (const std::uint16_t code : l.packed) windows += PairList::Layer::isWindow(code) ? 1 : 0;
   }
   // Per slot, from its partners sorted: the aligned groups of 8 they fall in, and the
   // greedy windows (each from the lowest partner not yet in one) the list should hold.
