@@ -132,7 +132,10 @@ void BM_PairKernel(benchmark::State& st) {
   st.counters["layers"] = static_cast<double>(list.layers().size());
   st.counters["list bytes/particle"] = static_cast<double>(list.memoryBytes()) / static_cast<double>(s.size());
 }
-BENCHMARK(BM_PairKernel)->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_PairKernel)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 void BM_ListBuild(benchmark::State& st) {
   Case& c = caseOf(st.range(0));

@@ -105,7 +105,9 @@ struct PairList::Scratch {
     std::vector<std::uint32_t> kept;  // one particle's partners when the list is nearly full
     std::vector<neighbors::SlotRange> ranges;  // the forward ranges of one layer's cells
     std::vector<std::uint32_t> rangeStart;     // each cell's first in ranges
-    std::vector<float> sums;  // the closed-form kernel's force sums over a layer's span (and, for layers that reach the store's end, their positions padded)
+    // The closed-form kernel's force sums over a layer's span and, for a layer that
+    // reaches the store's end, its positions padded with zeros (layerForcesOf).
+    std::vector<float> sums;
   };
   tbb::enumerable_thread_specific<Buffers> perThread;
 };

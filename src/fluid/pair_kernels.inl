@@ -265,7 +265,8 @@ inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, 
 inline std::uint32_t packWindows(std::uint32_t i, std::uint32_t lo, const std::uint32_t* __restrict entry,
                                  std::uint32_t count, std::uint16_t* __restrict out, std::uint32_t at) {
   using Layer = PairList::Layer;
-  std::uint32_t prev = i - 7;  // the last window's first slot, modulo 2^32 (the kernel counts signed: the same slots)
+  // The last window's first slot, modulo 2^32 (the kernel counts signed: the same slots).
+  std::uint32_t prev = i - 7;
   std::uint32_t wg = UINT32_MAX - 1, off = 0;  // the last window's group (from lo) and first lane
   std::uint32_t last = at;                      // its code
   for (std::uint32_t q = 0; q < count; ++q) {
