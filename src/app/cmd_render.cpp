@@ -232,6 +232,7 @@ int renderCommand(const RenderOptions& o) {
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
+    if (!rec.leftOutNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.leftOutNote());
     const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);
     if (range.last && *range.last > lastRecorded && chatty)
       fmt::print(stderr, "note: --frames reaches frame {}; the recording ends at frame {}, the last drawn\n",

@@ -29,6 +29,8 @@ class RecordedFrames {
   [[nodiscard]] FrameSnapshot load(std::size_t index) const;
   /// Why the scene file beside the folder was not used (it is invalid), or "".
   [[nodiscard]] const std::string& sceneNote() const;
+  /// Which frames were left out as an earlier run's (session::Playback), or "".
+  [[nodiscard]] const std::string& leftOutNote() const;
 
   std::string sceneName;            ///< names the pictures
   double framesPerSecond = 24;      ///< from the scene beside the folder, else 24

@@ -1,6 +1,11 @@
 #include "scene_source.h"
 
+#include <system_error>
+
+#include <fmt/format.h>
+
 #include "cache/naming.h"
+#include "cache/obj_format.h"
 #include "core/error.h"
 #include "scene/reader.h"
 
@@ -47,6 +52,52 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
   if (formats.sim)
     for (const scene::ObjectDesc& obj : loaded.desc.objects)
       checkOutputName(obj.name, "Object/Name", loaded.file);
+}
+
+void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, const std::filesystem::path& outDir) {
+  namespace fs = std::filesystem;
+  struct Input {
+    fs::path path;
+    int line;
+    const char* element;
+  };
+  const scene::SceneDesc& desc = loaded.desc;
+  const fs::path base = desc.baseDir.empty() ? fs::path(".") : fs::path(desc.baseDir);
+  std::vector<Input> inputs;
+  for (const scene::ObjectDesc& o : desc.objects)
+    if (!o.geometry.empty()) inputs.push_back({base / o.geometry, o.line, "Object/Geometry"});
+  for (const scene::FluidDesc& f : desc.fluids)
+    for (const scene::FillDesc& fill : f.fills)
+      if (fill.shape == scene::FillShape::Mesh) inputs.push_back({base / fill.geometry, fill.line, "Fill/Geometry"});
+  // Both exist (the input was just read): one file, whatever the paths' spelling.
+  const auto same = [](const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    return fs::equivalent(a, b, ec) && !ec;
+  };
+  const auto refuse = [&](const Input& in, const fs::path& out) {
+    throw InputError({loaded.file, in.line, in.element},
+                     fmt::format("the mesh '{}' is a file this run would write over ('{}')", in.path.string(),
+                                 out.string()),
+                     "another --out (a run writes each object's mesh to <out>/<scene>Geo/<object>.obj), or the "
+                     "input mesh moved where the run writes nothing");
+  };
+  for (const Input& in : inputs) {
+    if (formats.sim)
+      for (const scene::ObjectDesc& o : desc.objects) {
+        const fs::path out = outDir / cache::geometryFileName(loaded.name, o.name);
+        if (same(in.path, out)) refuse(in, out);
+      }
+    // Frame files: "<scene>.NNNN.ply" in ply/, "<fluid>.NNNN.obj" in mesh/.
+    const std::string file = in.path.filename().string();
+    const auto named = [&](const std::string& stem) {
+      return file.size() > stem.size() && file.compare(0, stem.size(), stem) == 0 && file[stem.size()] == '.';
+    };
+    const fs::path folder = in.path.parent_path();
+    if (formats.ply && named(loaded.name) && same(folder, outDir / "ply")) refuse(in, outDir / "ply" / file);
+    if (formats.mesh && same(folder, outDir / "mesh"))
+      for (const scene::FluidDesc& f : desc.fluids)
+        if (named(f.name)) refuse(in, outDir / "mesh" / file);
+  }
 }
 
 }  // namespace softsub::app

@@ -42,4 +42,13 @@ void checkOutputName(std::string_view name, std::string_view element, const std:
 /// names the scene file.
 void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, bool sceneNamesFiles);
 
+/// Refuses a run into `outDir` that would write over one of the scene's own input meshes
+/// (an object's or a mesh fill's <Geometry>): the run writes each object's mesh to
+/// `<out>/<scene>Geo/<name>.obj`, where the docs suggest keeping input meshes, so an
+/// --out of the scene's own folder would replace them. Compared by file identity (a link
+/// or another spelling of the path is the same file). Also refused: an input mesh in
+/// one of the run's frame folders (ply/, mesh/) under a name the run's frames take
+/// there. The InputError names the <Geometry> line. Nothing is created or changed.
+void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, const std::filesystem::path& outDir);
+
 }  // namespace softsub::app

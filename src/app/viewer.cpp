@@ -81,6 +81,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     // Checked as run checks them, before the window opens: S writes files named after the
     // scene, fluids and objects, P screenshots named after the scene.
     checkOutputNames(loaded, formats, true);
+    checkInputsKept(loaded, formats, outDir);
     session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir, formats);
     if (options.stopRecordingAt >= 0) session_->setStopRecordingAt(options.stopRecordingAt);
     renderScene_ = renderSceneOf(session_->desc(), session_->objectMeshes());

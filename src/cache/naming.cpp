@@ -26,9 +26,17 @@ std::int64_t pdcTicks(std::int64_t frame, double fps) {
 void checkFileNamePart(std::string_view name, std::string_view element) {
   const auto refuse = [&](std::string problem) {
     throw InputError({"", 0, std::string(element)}, std::move(problem),
-                     "a non-empty name without '/', '\\' or control characters");
+                     "a non-empty name of at most 100 bytes without '/', '\\' or control characters, "
+                     "other than '.' and '..'");
   };
   if (name.empty()) refuse("empty name cannot be used in a file name");
+  // A file name holds at most 255 bytes on common file systems, and the longest one a
+  // name goes into adds a frame tag, an extension and a temporary suffix with the host's
+  // name: 100 leaves room (the scene reader caps fluid and object names at 100 too).
+  if (name.size() > 100)
+    refuse(fmt::format("name '{}' is {} bytes long: too long for the file names it goes into",
+                       detail::excerpt(name), name.size()));
+  if (name == "." || name == "..") refuse(fmt::format("name '{}' would make a hidden file", name));
   for (const char c : name) {
     const auto u = static_cast<unsigned char>(c);
     if (c == '/' || c == '\\' || u < 0x20 || u == 0x7f) {

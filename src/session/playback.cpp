@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "cache/atomic_file.h"
+#include "cache/manifest.h"
 #include "cache/sim_format.h"
 #include "core/error.h"
 #include "scene/reader.h"
@@ -104,6 +105,17 @@ Playback::Playback(const fs::path& path) {
     if (!numbers_.empty() && numbers_.back() == number) continue;  // "7" and "0007": the first
     numbers_.push_back(number);
     frames_.push_back(file);
+  }
+  const std::vector<std::int64_t> manifests = cache::manifestFrames(folder_, sceneName_);
+  if (!manifests.empty() && numbers_.front() <= manifests.back() && numbers_.back() > manifests.back()) {
+    const auto kept = static_cast<std::size_t>(
+        std::upper_bound(numbers_.begin(), numbers_.end(), manifests.back()) - numbers_.begin());
+    leftOutNote_ = fmt::format(
+        "frames {} to {} of '{}' left out: they have no manifest, and the last frame that has one is {} (an "
+        "earlier, longer run's frames that a later run did not replace)",
+        numbers_[kept], numbers_.back(), sceneName_, manifests.back());
+    numbers_.resize(kept);
+    frames_.resize(kept);
   }
 
   // The scene file beside the folder: colours, sizes, frame rate, camera, container.

@@ -25,6 +25,10 @@ class Playback {
   /// the frame rate, the camera and the container. Object meshes are read once from the
   /// OBJ files the first frame names. InputError when there is no frame (saying what is
   /// expected) or a frame or mesh is invalid; IoError when something cannot be read.
+  /// When the scene has frame manifests (`manifest/`, written by every run), frames
+  /// past the last one are left out: a fresh run into a folder keeps the later frames
+  /// of an earlier, longer run (it never deletes cache files) but removes its manifests,
+  /// so those frames are not the last run's (leftOutNote() says which).
   explicit Playback(const std::filesystem::path& path);
 
   /// Number of frames.
@@ -50,6 +54,8 @@ class Playback {
   [[nodiscard]] const std::optional<scene::SceneDesc>& scene() const { return scene_; }
   /// Why the scene file beside the folder was not used, when it is there but invalid; "".
   [[nodiscard]] const std::string& sceneNote() const { return sceneNote_; }
+  /// Which frames were left out as an earlier run's (see the constructor), or "".
+  [[nodiscard]] const std::string& leftOutNote() const { return leftOutNote_; }
   /// The objects' meshes (in their own axes; the frames' ObjectSnapshot places them), in
   /// the order of the first frame's objects.
   [[nodiscard]] const std::vector<cache::ObjectMesh>& objectMeshes() const { return meshes_; }
@@ -62,6 +68,7 @@ class Playback {
   double fps_ = 24;
   std::optional<scene::SceneDesc> scene_;
   std::string sceneNote_;
+  std::string leftOutNote_;
   std::vector<cache::ObjectMesh> meshes_;
 };
 

@@ -2,6 +2,7 @@
 // the seed's flags, and what it reports.
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -326,6 +327,57 @@ TEST(Run, AnOutputNameFromTheSceneFileNameIsRefusedNamingTheFile) {
   const RunResult none = runSoftsub("run --frames 1 --formats none --out o " + quote(tmp / name), tmp.path());
   EXPECT_EQ(none.code, 0) << none.err;
   EXPECT_FALSE(fs::exists(tmp / "o"));
+}
+
+// The scene's name (the file's name without .scene) is capped as fluid and object names
+// are: a 240-character one once wrote frame 0's PDC and then failed at the PLY file with
+// "File name too long" (exit 3), leaving a partial folder.
+TEST(Run, ASceneNameLongerThan100BytesIsRefusedBeforeAnythingIsWritten) {
+  TempDir tmp;
+  const std::string scene = "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
+                            "<Fluid><Name>a</Name><Particles>0 1 0</Particles></Fluid></Scene>\n";
+  std::ofstream(tmp / (std::string(100, 'L') + ".scene")) << scene;
+  std::ofstream(tmp / (std::string(101, 'L') + ".scene")) << scene;
+  const RunResult ok = runSoftsub("run --out o " + std::string(100, 'L') + ".scene", tmp.path());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(tmp / "o/ply" / (std::string(100, 'L') + ".0001.ply")));
+  const RunResult refused = runSoftsub("run --out p " + std::string(101, 'L') + ".scene", tmp.path());
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("scene name: name '"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("is 101 bytes long"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(tmp / "p"));
+}
+
+// A run writes each object's mesh to <out>/<scene>Geo/<object>.obj, the folder the docs
+// suggest for input meshes: with --out the scene's own folder, a run once replaced the
+// user's mesh with its export (comments, UVs and quads lost). Refused, whatever the
+// path's spelling, before anything is written; another --out runs.
+TEST(Run, ARunNeverWritesOverTheScenesInputMesh) {
+  TempDir tmp;
+  fs::create_directories(tmp / "shotGeo");
+  const std::string mesh = "# the artist's crate\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                           "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::ofstream(tmp / "shotGeo/crate.obj") << mesh;
+  std::ofstream(tmp / "shot.scene")
+      << "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>\n"
+         "<Fluid><Name>a</Name><Particles>0 8 0</Particles></Fluid>\n"
+         "<Object><Name>crate</Name><Geometry>shotGeo/crate.obj</Geometry>"
+         "<InitialPosition>0 3 0</InitialPosition></Object></Scene>\n";
+  for (const std::string& out : std::vector<std::string>{".", "./", quote(tmp.path())}) {
+    const RunResult r = runSoftsub("run --out " + out + " shot.scene", tmp.path());
+    EXPECT_EQ(r.code, 2) << out << ": " << r.err;
+    EXPECT_NE(r.err.find("shot.scene:3: Object/Geometry: the mesh"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("would write over"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(tmp / "shot.0000.sim")) << out;
+    std::ifstream in(tmp / "shotGeo/crate.obj");
+    const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(kept, mesh) << out;
+  }
+  // Without .sim frames no object mesh is written: nothing to refuse.
+  EXPECT_EQ(runSoftsub("run --out . --formats pdc shot.scene", tmp.path()).code, 0);
+  const RunResult elsewhere = runSoftsub("run --out o shot.scene", tmp.path());
+  EXPECT_EQ(elsewhere.code, 0) << elsewhere.err;
+  EXPECT_TRUE(fs::exists(tmp / "o/shotGeo/crate.obj"));
 }
 
 }  // namespace

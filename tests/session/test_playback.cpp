@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "cache/atomic_file.h"
+#include "cache/manifest.h"
 #include "core/error.h"
 #include "scene/compile.h"
 #include "session/live_session.h"
@@ -119,6 +120,26 @@ TEST(Playback, OpensAFrameFileAndPicksTheFoldersScene) {
   const Playback bare(loose);
   EXPECT_FALSE(bare.scene().has_value());
   EXPECT_NEAR(bare.framesPerSecond(), 24, 1e-9);  // frame 1 at 1/24 s
+}
+
+// A fresh run into a folder keeps an earlier, longer run's later frames (it never
+// deletes cache files) and removes that run's manifests; render and mesh once played
+// and meshed those frames as the last run's. With manifests, frames past the last one
+// are left out and said to be; a folder without any manifest plays every frame.
+TEST(Playback, FramesPastTheLastManifestAreAnEarlierRunsAndLeftOut) {
+  ScratchDir dir;
+  const LiveSession s = recordSmall(dir.path(), 6, true);
+  const fs::path folder = dir.path() / "smallSim";
+  const Playback all(folder);
+  EXPECT_EQ(all.frameCount(), 7u);
+  EXPECT_EQ(all.leftOutNote(), "");
+  fs::create_directories(folder / "manifest");
+  for (const std::int64_t f : {0, 1, 2}) std::ofstream(cache::manifestPath(folder, "small", f)) << "x\n";
+  const Playback kept(folder);
+  ASSERT_EQ(kept.frameCount(), 3u);
+  EXPECT_EQ(kept.frameNumbers().back(), 2);
+  EXPECT_NE(kept.leftOutNote().find("frames 3 to 6 of 'small' left out"), std::string::npos) << kept.leftOutNote();
+  EXPECT_EQ(positionsOf(kept.load(2)), positionsOf(all.load(2)));
 }
 
 TEST(Playback, AFolderWithoutFramesSaysWhatItExpects) {
