@@ -344,6 +344,11 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
   for (int a = 0; a < 3; ++a) {
     grid.lo[a] = box.lo[a];
     grid.n[a] = static_cast<std::uint64_t>(cellsAlong(box.hi[a] - box.lo[a], s));
+    // A mesh at most one spacing thick along an axis gets its one layer of voxels
+    // centred in it: from the low face, the centres lay s/2 off it, outside a part
+    // thinner than that, and a rod thin along two axes (4 x 0.02 x 0.02 at spacing 0.2)
+    // had neither an inside voxel nor a surface sample, and became one particle.
+    if (grid.n[a] == 1) grid.lo[a] = 0.5 * (box.lo[a] + box.hi[a]) - 0.5 * s;
     extent = std::max(extent, box.hi[a] - box.lo[a]);
   }
   std::vector<Point> local(mesh.vertices.size());
@@ -448,7 +453,7 @@ MeshFillResult fillMesh(const TriangleMesh& mesh, const MeshFillOptions& options
     if (result.points.empty())
       result.warnings.push_back(
           "no lattice point lies inside the mesh: it may be open, double-sided or thinner than the spacing "
-          "(surfaceOnly samples the surface instead)");
+          "(a surface fill, --surface or <Surface>true</Surface>, samples the surface instead)");
   }
   return result;
 }

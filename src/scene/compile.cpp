@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "core/error.h"
 #include "geometry/fill.h"
 #include "geometry/mesh_loader.h"
 #include "scene/bodies.h"
@@ -188,7 +189,8 @@ Compiled compile(const SceneDesc& desc) {
   for (std::size_t f = 0; f < nf; ++f) {
     const FluidDesc& fd = desc.fluids[f];
     points.assign(fd.particles.begin(), fd.particles.end());
-    for (const FillDesc& fill : fd.fills) {
+    for (std::size_t k = 0; k < fd.fills.size(); ++k) {
+      const FillDesc& fill = fd.fills[k];
       if (fill.shape != FillShape::Mesh) {
         generateFill(fill, points);
         continue;
@@ -202,6 +204,14 @@ Compiled compile(const SceneDesc& desc) {
           mesh, {.spacing = fill.spacing,
                  .surfaceOnly = fill.surface,
                  .maxParticles = geometry::meshFillBound(mesh, fill.spacing)});
+      // As a box or sphere fill that makes nothing is refused when the scene is read (a
+      // mesh fill's count is known only now, from the fill itself).
+      if (r.points.empty())
+        throw InputError({desc.file, fill.line, fmt::format("Fluid '{}'/Fill[{}]", fd.name, k + 1)},
+                         fmt::format("the mesh fill of '{}' makes no particles at Spacing {:g}", fill.geometry,
+                                     fill.spacing),
+                         "a Spacing smaller than the mesh's thickness, or <Surface>true</Surface> for a thin or "
+                         "open mesh");
       points.insert(points.end(), r.points.begin(), r.points.end());
     }
     solver::FluidInfo info;

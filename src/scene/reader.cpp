@@ -119,6 +119,8 @@ class Context {
     options.warnings->push_back(formatInputError({file_, line, element}, text, {}));
   }
 
+  [[nodiscard]] const std::string& file() const { return file_; }
+
   const ReadOptions& options;
   std::filesystem::path baseDir;  ///< absolute folder relative paths resolve against
 
@@ -347,6 +349,7 @@ class SceneReader {
     checkPairs();
     checkParticleCap();
     scene_.baseDir = cx_.baseDir.string();
+    scene_.file = cx_.file();
     return std::move(scene_);
   }
 

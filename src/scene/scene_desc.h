@@ -155,6 +155,8 @@ struct SceneDesc {
   /// The folder relative paths (mesh fills' Geometry) resolve against: the scene file's
   /// folder, absolute. Where the scene came from, not what it says: not compared.
   std::string baseDir;
+  /// The scene file as messages name it (the reader's file name); not compared.
+  std::string file;
   bool operator==(const SceneDesc& o) const {
     return simulation == o.simulation && camera == o.camera && environment == o.environment &&
            fluids == o.fluids && objects == o.objects && interactions == o.interactions;

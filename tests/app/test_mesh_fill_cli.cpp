@@ -46,6 +46,21 @@ void expectRefused(const TempDir& tmp, const std::string& problem) {
   EXPECT_FALSE(fs::exists(tmp / "tSim"));
 }
 
+// A box or sphere fill that makes nothing is refused when the scene is read; a mesh
+// fill's count is known once it is filled, and one that made nothing ran with an empty
+// fluid, exit 0. Now exit 2 at the <Fill> line, before anything is written.
+TEST(MeshFillCli, AMeshFillThatMakesNoParticlesExitsTwoAtTheFillLine) {
+  TempDir tmp;
+  writeText(tmp / "geo/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");  // open: no inside
+  writeText(tmp / "t.scene", meshScene("geo/tri.obj"));
+  const RunResult r = runSoftsub("run t.scene --frames 2", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("error: t.scene:5: Fluid 'goo'/Fill[1]: the mesh fill of 'geo/tri.obj' makes no particles"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "tSim"));
+}
+
 TEST(MeshFillCli, GarbageMeshExitsTwoAtTheGeometryLine) {
   TempDir tmp;
   writeText(tmp / "geo/junk.obj", "this is not a mesh\n");

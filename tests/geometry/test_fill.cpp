@@ -352,6 +352,23 @@ TEST(FillMesh, ThinPartsCoverAPlateModelledAtAnAngle) {
   EXPECT_EQ(fillMesh(boxMesh(Vec3(0, 0, 0), Vec3(2, 2, 2)), o).thinVoxels, 0U);
 }
 
+// A mesh at most one spacing thick along an axis gets its one layer of lattice points
+// in its middle there: from the low face they lay s/2 off it, outside a part thinner
+// than that, and a rod thin on two axes had neither an inside point nor a surface sample
+// (as a body, one particle at its centre; as a fill, none).
+TEST(FillMesh, ARodThinnerThanTheSpacingOnTwoAxesIsFilledAlongItsLength) {
+  const Vec3 lo(-2, 1, 0.5), hi(2, 1.02, 0.52);
+  for (const bool surfaceOnly : {false, true}) {
+    const MeshFillResult r = fill(boxMesh(lo, hi), 0.2, surfaceOnly);
+    ASSERT_EQ(r.points.size(), 20u) << surfaceOnly;
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      EXPECT_NEAR(r.points[i].x(), -1.9 + 0.2 * static_cast<double>(i), 1e-9) << surfaceOnly;
+      EXPECT_NEAR(r.points[i].y(), 1.01, 1e-9) << surfaceOnly;
+      EXPECT_NEAR(r.points[i].z(), 0.51, 1e-9) << surfaceOnly;
+    }
+  }
+}
+
 TEST(LatticeShell, KeepsTheOuterLayersOfACube) {
   std::vector<Vec3> cube;
   for (int z = 0; z < 6; ++z)
