@@ -176,11 +176,15 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
                   "Write the solver state every K frames for --resume (the two newest are kept); 0: never")
       ->transform(wholeNumberIn(0, 1000000))
       ->capture_default_str();
-  run->add_flag("--adaptive", o.adaptive,
-                "Choose each frame's substeps from the fastest particle, the strongest force and the stability "
-                "estimate (at least the scene's Substeps)");
-  run->add_option("--max-substeps", o.maxSubsteps, "The most substeps --adaptive may choose for a frame")
+  CLI::Option* adaptive = run->add_flag(
+      "--adaptive", o.adaptive,
+      "Choose each frame's substeps from the fastest particle, the strongest force and the stability "
+      "estimate (at least the scene's Substeps)");
+  run->add_option("--max-substeps", o.maxSubsteps,
+                  "The most substeps --adaptive may choose for a frame (at least the scene's Substeps; needs "
+                  "--adaptive)")
       ->transform(wholeNumberIn(1, 10000))
+      ->needs(adaptive)
       ->capture_default_str();
   run->add_option("--speed-limit", o.speedLimit,
                   "Blow-up check: the most interaction distances a particle may cover in one substep; 0: no "
@@ -228,6 +232,11 @@ int runCommand(const RunOptions& o) {
   const cache::Formats formats = checkCommandLine(o);
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
+  if (o.adaptive && o.maxSubsteps < loaded.desc.simulation.substeps)
+    throw InputError({"command line", 0, "--max-substeps"},
+                     fmt::format("{} is below the scene's Substeps ({}), the fewest --adaptive uses", o.maxSubsteps,
+                                 loaded.desc.simulation.substeps),
+                     fmt::format("{} to 10000, or fewer Substeps (--substeps)", loaded.desc.simulation.substeps));
   const std::string& sceneFile = loaded.file;
   // The scene's name names every file of the run and the preview: with neither, no file.
   checkOutputNames(loaded, formats, anyFormat(formats) || o.preview);
@@ -353,15 +362,37 @@ int runCommand(const RunOptions& o) {
                "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
                sceneFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
                2 * fast->particleRadius,
-               o.adaptive ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
-                          : fmt::format("raise Substeps to {:.0f} or use --adaptive", needed));
+               o.adaptive && o.maxSubsteps < 10000 ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
+               : !o.adaptive && needed <= 10000  ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
+                                                 : std::string("no substep count up to 10,000 a frame keeps it "
+                                                               "within its particles' diameter: slow it down or "
+                                                               "give it larger particles (ParticleSize)"));
   };
   warnIfFast(std::max<std::int64_t>(resumed.frame, 0));
+  // Once a run: --adaptive held back by its ceiling leaves particles moving further a
+  // substep than it allows, which it would otherwise prevent (and the stability warning
+  // is not given under --adaptive).
+  bool warnedCapped = o.quiet;
+  const auto warnIfCapped = [&](std::int64_t frame) {
+    const double needed = sim.cappedSubsteps();
+    if (warnedCapped || needed <= 0) return;
+    warnedCapped = true;
+    progress.end();
+    fmt::print(stderr,
+               "warning: {}: frame {} needed {:.0f} substeps for --adaptive's limits, and --max-substeps held it "
+               "to {}: particles may move further a substep than is stable, be flung about and gain energy; {}\n",
+               sceneFile, frame, needed, sim.substeps(),
+               o.maxSubsteps < 10000 && needed <= 10000
+                   ? fmt::format("raise --max-substeps to {:.0f}", needed)
+                   : std::string("no count up to 10,000 a frame suffices: soften the forces (MaximumForce, "
+                                 "Viscosity) or slow the motion"));
+  };
   hooks.onProgress = [&](const solver::FrameProgress& p) {
     fewestSubsteps = std::min(fewestSubsteps, sim.substeps());
     mostSubsteps = std::max(mostSubsteps, sim.substeps());
     progress.update(p);
     warnIfFast(p.frame);
+    warnIfCapped(p.frame);
   };
 
   const std::string where = anyFormat(formats) ? folderText(outDir) : std::string("nothing written");

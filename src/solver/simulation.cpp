@@ -539,7 +539,11 @@ void Simulation::prepare() {
 }
 
 void Simulation::advanceFrame() {
-  if (substepInFrame_ == 0 && model_.adaptiveSubsteps) substeps_ = chooseSubsteps();
+  if (substepInFrame_ == 0 && model_.adaptiveSubsteps) {
+    const double needed = neededSubsteps();
+    substeps_ = capSubsteps(needed);
+    capped_ = needed > substeps_ ? needed : 0;
+  }
   while (substepInFrame_ < substeps_) step();
   finishFrame();
 }
@@ -582,7 +586,7 @@ Simulation::Extremes Simulation::scanParticles(bool withForces) const {
       joinExtremes);
 }
 
-int Simulation::chooseSubsteps() const {
+double Simulation::neededSubsteps() const {
   const double fps = model_.framesPerSecond;
   double n = std::max({1, model_.substeps, stableSubsteps_});
   // The forces of the last evaluation (zero before the first, so gravity alone) are the
@@ -593,7 +597,11 @@ int Simulation::chooseSubsteps() const {
     n = std::max(n, std::ceil(e.speed / (fps * kAdaptiveTravel)));
     n = std::max(n, std::ceil(std::sqrt(0.5 * e.acceleration / kAdaptiveTravel) / fps));
   }
-  return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(std::max(1, model_.maxSubsteps))));
+  return n;
+}
+
+int Simulation::capSubsteps(double needed) const {
+  return static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(std::max(1, model_.maxSubsteps))));
 }
 
 std::optional<Simulation::BodyTravel> Simulation::fastestBody() const {

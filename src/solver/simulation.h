@@ -55,7 +55,13 @@ class Simulation {
   /// and the stability estimate's minimum, enough that no particle moves more than
   /// kAdaptiveTravel of its interaction distance per substep at its current speed or
   /// from rest under its current acceleration; at most model.maxSubsteps.
-  [[nodiscard]] int chooseSubsteps() const;
+  [[nodiscard]] int chooseSubsteps() const { return capSubsteps(neededSubsteps()); }
+  /// What chooseSubsteps asks for before model.maxSubsteps caps it (may exceed it).
+  [[nodiscard]] double neededSubsteps() const;
+  /// With adaptive substeps, how many the current frame needed when model.maxSubsteps
+  /// held it back (its substeps() are then fewer: particles may move further a substep
+  /// than adaptive stepping allows); 0 when the frame took what it needed.
+  [[nodiscard]] double cappedSubsteps() const { return capped_; }
   /// The largest distance a particle covers in one substep at its current speed, in its
   /// interaction distances (what the blow-up check compares to model.maxTravelPerSubstep;
   /// `run --stats` prints it). Infinity when a velocity is not finite.
@@ -155,6 +161,8 @@ class Simulation {
   neighbors::CellGrid grid_;
   fluid::PairList list_;
   int substeps_ = 1;       // of the current frame
+  double capped_ = 0;      // cappedSubsteps()
+  [[nodiscard]] int capSubsteps(double needed) const;
   int substepInFrame_ = 0; // substeps done in the current frame
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in

@@ -380,5 +380,36 @@ TEST(Run, ARunNeverWritesOverTheScenesInputMesh) {
   EXPECT_TRUE(fs::exists(tmp / "o/shotGeo/crate.obj"));
 }
 
+// --max-substeps is --adaptive's ceiling: alone it was silently ignored, and below the
+// scene's Substeps it silently cut frames to fewer than the scene asks for. Both are
+// refused before anything is written; a frame the ceiling holds back is warned about
+// once (--adaptive turns the stability warning off, so nothing else would say so).
+TEST(Run, MaxSubstepsIsCheckedAndAFrameItHoldsBackIsWarnedAbout) {
+  TempDir tmp;
+  std::ofstream(tmp / "fast.scene")
+      << "<Scene version=\"1\"><Simulation><Frames>2</Frames><Substeps>8</Substeps></Simulation>"
+         "<Environment><Height>100</Height></Environment><Fluid><Name>a</Name>"
+         "<InitialSpeed>0 -500 0</InitialSpeed><Particles>0 50 0</Particles></Fluid></Scene>\n";
+  const RunResult alone = runSoftsub("run fast.scene --max-substeps 20 --out o", tmp.path());
+  EXPECT_EQ(alone.code, 2) << alone.err;
+  EXPECT_NE(alone.err.find("--max-substeps requires --adaptive"), std::string::npos) << alone.err;
+  const RunResult below = runSoftsub("run fast.scene --adaptive --max-substeps 7 --out o", tmp.path());
+  EXPECT_EQ(below.code, 2) << below.err;
+  EXPECT_NE(below.err.find("--max-substeps: 7 is below the scene's Substeps (8)"), std::string::npos) << below.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+  // 500 units/s at 24 frames a second and a quarter of the 1.5 interaction distance a
+  // substep: 56 substeps a frame.
+  const RunResult capped = runSoftsub("run fast.scene --adaptive --max-substeps 8 --formats none --stats", tmp.path());
+  EXPECT_EQ(capped.code, 0) << capped.err;
+  EXPECT_NE(capped.err.find("warning: fast.scene: frame 1 needed 56 substeps for --adaptive's limits, and "
+                            "--max-substeps held it to 8"),
+            std::string::npos)
+      << capped.err;
+  EXPECT_NE(capped.err.find("raise --max-substeps to 56"), std::string::npos) << capped.err;
+  const RunResult free = runSoftsub("run fast.scene --adaptive --formats none", tmp.path());
+  EXPECT_EQ(free.code, 0) << free.err;
+  EXPECT_EQ(free.err.find("held it"), std::string::npos) << free.err;
+}
+
 }  // namespace
 }  // namespace softsub::apptest
