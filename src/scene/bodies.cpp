@@ -6,6 +6,8 @@
 #include <numbers>
 #include <optional>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/error.h"
 #include "geometry/fill.h"
 #include "geometry/mass_properties.h"
@@ -73,6 +75,21 @@ Mass massOf(const ObjectDesc& o, const geometry::TriangleMesh& scaled) {
     case ObjectShape::Mesh: break;
   }
   return m;
+}
+
+// A body thin along an axis (a rod, a disc) has a principal moment of inertia near 0,
+// whose inverse overflowed the solver's floats: a 4 x 1e-30 cylinder stopped its run at
+// the first contact with "angular momentum is not finite", a remedy about substeps that
+// could not help. Each principal moment is kept at least 1e-6 of the largest, as
+// rigid-body engines bound theirs; no real body is changed (a rod 100 times longer than
+// it is wide has 6e-4), and an inertia within the bound is returned exactly as given.
+Mat3 boundedInertia(const Mat3& inertia) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(inertia);
+  Vec3 moments = eig.eigenvalues();
+  const double least = 1e-6 * moments.maxCoeff();
+  if (!(moments.minCoeff() < least)) return inertia;
+  for (int k = 0; k < 3; ++k) moments[k] = std::max(moments[k], least);
+  return eig.eigenvectors() * moments.asDiagonal() * eig.eigenvectors().transpose();
 }
 
 geometry::TriangleMesh scaledMesh(const geometry::TriangleMesh& mesh, double s) {
@@ -217,7 +234,7 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     info.dynamic = od.isDynamic;
     info.mass = od.mass;
     info.inverseMass = od.isDynamic ? 1.0 / od.mass : 0.0;
-    info.inverseInertia = od.isDynamic ? Mat3(mass.inertia.inverse()) : Mat3::Zero();
+    info.inverseInertia = od.isDynamic ? Mat3(boundedInertia(mass.inertia).inverse()) : Mat3::Zero();
     info.restitution = od.normalAttenuation;
     info.friction = od.tangentAttenuation;
     info.particleRadius = 0.5 * spacing;
