@@ -51,7 +51,8 @@ int meshCommand(const MeshOptions& o) {
 
   const bool chatty = stderrIsTerminal() && !o.quiet;
   if (chatty && !playback.sceneNote().empty()) fmt::print(stderr, "note: {}\n", playback.sceneNote());
-  if (chatty && !playback.leftOutNote().empty()) fmt::print(stderr, "note: {}\n", playback.leftOutNote());
+  if (chatty)
+    for (const std::string& note : playback.notes()) fmt::print(stderr, "note: {}\n", note);
   if (chatty && !playback.scene())
     fmt::print(stderr, "note: no scene file beside {}: default particle sizes\n", playback.folder().string());
   const std::int64_t lastFrame = playback.frameNumbers().back();

@@ -232,7 +232,8 @@ int renderCommand(const RenderOptions& o) {
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
-    if (!rec.leftOutNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.leftOutNote());
+    if (chatty)
+      for (const std::string& note : rec.notes()) fmt::print(stderr, "note: {}\n", note);
     const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);
     if (range.last && *range.last > lastRecorded && chatty)
       fmt::print(stderr, "note: --frames reaches frame {}; the recording ends at frame {}, the last drawn\n",
@@ -267,7 +268,7 @@ int renderCommand(const RenderOptions& o) {
                  loaded.desc.simulation.frames);
     scene::Compiled compiled = scene::compile(loaded.desc);
     if (!o.quiet)  // warnings, unlike notes, also for a pipe or a log (as run's)
-      for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", loaded.file, w);
+      for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", displayFile(loaded.file), w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));

@@ -167,7 +167,7 @@ CLI::App* addRunCommand(CLI::App& root, RunOptions& o) {
   addSurfaceOptions(run, o.surface, "; for mesh and vdb");
   run->add_flag("--stats", o.stats,
                 "Print each frame's energies on stdout: frame, time, kinetic, pair, gravity, bodies, total, "
-                "substeps, travel");
+                "substeps, travel, lists");
   run->add_flag("--resume", o.resume,
                 "Continue a run that stopped (killed, interrupted, failed) after its last complete frame; the "
                 "outputs are byte-identical to an uninterrupted run. Starts at frame 0 when there is nothing "
@@ -238,6 +238,7 @@ int runCommand(const RunOptions& o) {
                                  loaded.desc.simulation.substeps),
                      fmt::format("{} to 10000, or fewer Substeps (--substeps)", loaded.desc.simulation.substeps));
   const std::string& sceneFile = loaded.file;
+  const std::string shownFile = displayFile(sceneFile);  // in warnings: one line whatever the name
   // The scene's name names every file of the run and the preview: with neither, no file.
   checkOutputNames(loaded, formats, anyFormat(formats) || o.preview);
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
@@ -281,8 +282,8 @@ int runCommand(const RunOptions& o) {
   const bool chatty = stderrIsTerminal() && !o.quiet;
   if (!o.quiet) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
-    for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", sceneFile, w);
-    if (unstable) fmt::print(stderr, "warning: {}: {}\n", sceneFile, *unstable);
+    for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", shownFile, w);
+    if (unstable) fmt::print(stderr, "warning: {}: {}\n", shownFile, *unstable);
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
@@ -360,7 +361,7 @@ int runCommand(const RunOptions& o) {
     fmt::print(stderr,
                "warning: {}: object '{}' moves up to {:.3g} units a substep at frame {}, more than its particles' "
                "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
-               sceneFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
+               shownFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
                2 * fast->particleRadius,
                o.adaptive && o.maxSubsteps < 10000 ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
                : !o.adaptive && needed <= 10000  ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
@@ -381,7 +382,7 @@ int runCommand(const RunOptions& o) {
     fmt::print(stderr,
                "warning: {}: frame {} needed {:.0f} substeps for --adaptive's limits, and --max-substeps held it "
                "to {}: particles may move further a substep than is stable, be flung about and gain energy; {}\n",
-               sceneFile, frame, needed, sim.substeps(),
+               shownFile, frame, needed, sim.substeps(),
                o.maxSubsteps < 10000 && needed <= 10000
                    ? fmt::format("raise --max-substeps to {:.0f}", needed)
                    : std::string("no count up to 10,000 a frame suffices: soften the forces (MaximumForce, "

@@ -3,6 +3,7 @@
 /// frames, and the container, meshes and camera to draw them with.
 #include <cstdint>
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "core/snapshot.h"
@@ -29,8 +30,8 @@ class RecordedFrames {
   [[nodiscard]] FrameSnapshot load(std::size_t index) const;
   /// Why the scene file beside the folder was not used (it is invalid), or "".
   [[nodiscard]] const std::string& sceneNote() const;
-  /// Which frames were left out as an earlier run's (session::Playback), or "".
-  [[nodiscard]] const std::string& leftOutNote() const;
+  /// Which scene was taken, which frames were left out (session::Playback::notes).
+  [[nodiscard]] const std::vector<std::string>& notes() const;
 
   std::string sceneName;            ///< names the pictures
   double framesPerSecond = 24;      ///< from the scene beside the folder, else 24

@@ -30,6 +30,8 @@ std::string fileText(std::string_view file) {
 
 }  // namespace
 
+std::string displayFile(std::string_view file) { return fileText(file); }
+
 std::string formatInputError(const InputLocation& where, const std::string& problem,
                              const std::string& allowed) {
   std::string s;

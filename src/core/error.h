@@ -2,6 +2,7 @@
 /// Errors and the process exit codes they map to (documented in docs/cli.md).
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace softsub {
 
@@ -50,6 +51,10 @@ class BlowUpError : public std::runtime_error {
 };
 
 /// Formats an InputError message from its parts (used by InputError::what()).
+/// A file name as messages show it: control characters escaped (\t, \n, \r, \xHH), so
+/// that a message stays one line and an odd name can be told and typed.
+[[nodiscard]] std::string displayFile(std::string_view file);
+
 std::string formatInputError(const InputLocation& where, const std::string& problem,
                              const std::string& allowed);
 

@@ -99,6 +99,14 @@ Playback::Playback(const fs::path& path) {
     }
   }
   sceneName_ = wanted;
+  if (byScene.size() > 1) {
+    std::string others;
+    for (const auto& [stem, frames] : byScene)
+      if (stem != wanted) others += fmt::format("{}'{}'", others.empty() ? "" : ", ", stem);
+    notes_.push_back(fmt::format("the folder holds frames of {} scenes: '{}' taken, not {} (give one of a scene's "
+                                 ".sim files to take that scene)",
+                                 byScene.size(), wanted, others));
+  }
   auto& frames = byScene.at(wanted);
   std::sort(frames.begin(), frames.end());
   for (const auto& [number, file] : frames) {
@@ -110,10 +118,10 @@ Playback::Playback(const fs::path& path) {
   if (!manifests.empty() && numbers_.front() <= manifests.back() && numbers_.back() > manifests.back()) {
     const auto kept = static_cast<std::size_t>(
         std::upper_bound(numbers_.begin(), numbers_.end(), manifests.back()) - numbers_.begin());
-    leftOutNote_ = fmt::format(
+    notes_.push_back(fmt::format(
         "frames {} to {} of '{}' left out: they have no manifest, and the last frame that has one is {} (an "
         "earlier, longer run's frames that a later run did not replace)",
-        numbers_[kept], numbers_.back(), sceneName_, manifests.back());
+        numbers_[kept], numbers_.back(), sceneName_, manifests.back()));
     numbers_.resize(kept);
     frames_.resize(kept);
   }

@@ -28,7 +28,7 @@ class Playback {
   /// When the scene has frame manifests (`manifest/`, written by every run), frames
   /// past the last one are left out: a fresh run into a folder keeps the later frames
   /// of an earlier, longer run (it never deletes cache files) but removes its manifests,
-  /// so those frames are not the last run's (leftOutNote() says which).
+  /// so those frames are not the last run's (notes() says which).
   explicit Playback(const std::filesystem::path& path);
 
   /// Number of frames.
@@ -54,8 +54,10 @@ class Playback {
   [[nodiscard]] const std::optional<scene::SceneDesc>& scene() const { return scene_; }
   /// Why the scene file beside the folder was not used, when it is there but invalid; "".
   [[nodiscard]] const std::string& sceneNote() const { return sceneNote_; }
-  /// Which frames were left out as an earlier run's (see the constructor), or "".
-  [[nodiscard]] const std::string& leftOutNote() const { return leftOutNote_; }
+  /// Notes for a person: which scene was taken when the folder holds frames of several
+  /// (and how to choose another), which frames were left out as an earlier run's (see
+  /// the constructor).
+  [[nodiscard]] const std::vector<std::string>& notes() const { return notes_; }
   /// The objects' meshes (in their own axes; the frames' ObjectSnapshot places them), in
   /// the order of the first frame's objects.
   [[nodiscard]] const std::vector<cache::ObjectMesh>& objectMeshes() const { return meshes_; }
@@ -68,7 +70,7 @@ class Playback {
   double fps_ = 24;
   std::optional<scene::SceneDesc> scene_;
   std::string sceneNote_;
-  std::string leftOutNote_;
+  std::vector<std::string> notes_;
   std::vector<cache::ObjectMesh> meshes_;
 };
 

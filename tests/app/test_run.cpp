@@ -411,5 +411,16 @@ TEST(Run, MaxSubstepsIsCheckedAndAFrameItHoldsBackIsWarnedAbout) {
   EXPECT_EQ(free.err.find("held it"), std::string::npos) << free.err;
 }
 
+// Errors showed a file name's control characters escaped, warnings raw: a scene named
+// "x<newline>y.scene" split its stability warning over two lines.
+TEST(Run, AWarningShowsTheSceneFileNameOnOneLine) {
+  TempDir tmp;
+  fs::copy_file(examplesDir() / "jelly-block.scene", tmp / "x\ny.scene");
+  const RunResult r = runSoftsub("run --frames 1 --substeps 1 --formats none " + quote(tmp / "x\ny.scene"), tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("x\\ny.scene: the stability estimate calls"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("x\ny.scene"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace softsub::apptest

@@ -101,6 +101,11 @@ TEST(Playback, OpensAFrameFileAndPicksTheFoldersScene) {
     fs::copy_file(folder / "small.0000.sim", folder / ("other.000" + std::to_string(f) + ".sim"));
   EXPECT_EQ(Playback(folder).sceneName(), "small");
   EXPECT_EQ(Playback(folder.string() + "/").frameCount(), 3u);
+  // mesh and render took one silently: the choice is noted, with how to take the other.
+  ASSERT_EQ(Playback(folder).notes().size(), 1u);
+  EXPECT_EQ(Playback(folder).notes()[0],
+            "the folder holds frames of 2 scenes: 'small' taken, not 'other' (give one of a scene's .sim files to "
+            "take that scene)");
   const Playback other(folder / "other.0003.sim");
   EXPECT_EQ(other.sceneName(), "other");
   EXPECT_EQ(other.frameCount(), 5u);
@@ -132,13 +137,14 @@ TEST(Playback, FramesPastTheLastManifestAreAnEarlierRunsAndLeftOut) {
   const fs::path folder = dir.path() / "smallSim";
   const Playback all(folder);
   EXPECT_EQ(all.frameCount(), 7u);
-  EXPECT_EQ(all.leftOutNote(), "");
+  EXPECT_TRUE(all.notes().empty());
   fs::create_directories(folder / "manifest");
   for (const std::int64_t f : {0, 1, 2}) std::ofstream(cache::manifestPath(folder, "small", f)) << "x\n";
   const Playback kept(folder);
   ASSERT_EQ(kept.frameCount(), 3u);
   EXPECT_EQ(kept.frameNumbers().back(), 2);
-  EXPECT_NE(kept.leftOutNote().find("frames 3 to 6 of 'small' left out"), std::string::npos) << kept.leftOutNote();
+  ASSERT_EQ(kept.notes().size(), 1u);
+  EXPECT_NE(kept.notes()[0].find("frames 3 to 6 of 'small' left out"), std::string::npos) << kept.notes()[0];
   EXPECT_EQ(positionsOf(kept.load(2)), positionsOf(all.load(2)));
 }
 
