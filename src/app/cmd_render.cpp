@@ -238,8 +238,9 @@ int renderCommand(const RenderOptions& o) {
     if (range.last && *range.last > lastRecorded && chatty)
       fmt::print(stderr, "note: --frames reaches frame {}; the recording ends at frame {}, the last drawn\n",
                  *range.last, lastRecorded);
-    prepareOutputs();
+    // The drawing context first: without one (no EGL) nothing is made, no empty folder.
     maker = std::make_unique<PictureMaker>(rec.scene, o.width, o.height);
+    prepareOutputs();
     observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceSettings);
     pictures = &*observer;
     ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
@@ -273,8 +274,8 @@ int renderCommand(const RenderOptions& o) {
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file);
-    prepareOutputs();
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
+    prepareOutputs();
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);
     pictures = &*observer;
     FrameObserver* observers[] = {pictures};

@@ -284,6 +284,16 @@ int runCommand(const RunOptions& o) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", shownFile, w);
     if (unstable) fmt::print(stderr, "warning: {}: {}\n", shownFile, *unstable);
+    // Maya finds a PDC cache by its particle shape's name, and its node names hold no
+    // '-' and do not start with a digit: no shape can take such a fluid's files.
+    if (formats.pdc)
+      for (const scene::FluidDesc& f : loaded.desc.fluids)
+        if (f.name.find('-') != std::string::npos || (f.name[0] >= '0' && f.name[0] <= '9'))
+          fmt::print(stderr,
+                     "warning: {}: fluid '{}': Maya node names cannot hold '-' or start with a digit, so no "
+                     "Maya particle shape can be named '{}Shape' to read pdc/{}Shape.*.pdc; for Maya, name the "
+                     "fluid with letters, digits and '_', starting with a letter or '_'\n",
+                     shownFile, f.name, f.name, f.name);
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");

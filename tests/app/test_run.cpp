@@ -422,5 +422,22 @@ TEST(Run, AWarningShowsTheSceneFileNameOnOneLine) {
   EXPECT_EQ(r.err.find("x\ny.scene"), std::string::npos) << r.err;
 }
 
+// Maya finds a PDC cache by its particle shape's name, which can hold no '-' and not
+// start with a digit: a fluid named so gets a warning when its PDC files are written.
+TEST(Run, AFluidNameNoMayaShapeCanTakeIsWarnedAboutForPdc) {
+  TempDir tmp;
+  std::ofstream(tmp / "m.scene") << "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
+                                    "<Fluid><Name>goo-1</Name><Particles>0 1 0</Particles></Fluid>"
+                                    "<Fluid><Name>honey_2</Name><Particles>2 1 0</Particles></Fluid></Scene>\n";
+  const RunResult pdc = runSoftsub("run m.scene --out o", tmp.path());
+  EXPECT_EQ(pdc.code, 0) << pdc.err;
+  EXPECT_NE(pdc.err.find("warning: m.scene: fluid 'goo-1': Maya node names cannot hold '-'"), std::string::npos)
+      << pdc.err;
+  EXPECT_EQ(pdc.err.find("'honey_2'"), std::string::npos) << pdc.err;
+  const RunResult sim = runSoftsub("run m.scene --out p --formats sim", tmp.path());
+  EXPECT_EQ(sim.code, 0) << sim.err;
+  EXPECT_EQ(sim.err.find("Maya"), std::string::npos) << sim.err;
+}
+
 }  // namespace
 }  // namespace softsub::apptest
