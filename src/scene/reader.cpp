@@ -44,7 +44,7 @@ bool validName(std::string_view s) {
 // The problem with a name that is too long (kMaxNameLength), or empty for one that is not.
 std::string lengthProblem(std::string_view s) {
   if (s.size() <= kMaxNameLength) return {};
-  return fmt::format("the name is {} characters long: its output file names (with frame numbers, extensions and "
+  return fmt::format("the name is {} bytes long: its output file names (with frame numbers, extensions and "
                      "the temporary name of an atomic write) would pass the system's 255-byte limit",
                      s.size());
 }
@@ -53,7 +53,7 @@ std::string lengthProblem(std::string_view s) {
 // empty, no '/', '\\' or control character), checked here so a bad name is an error at
 // its line.
 constexpr std::string_view kObjectNameAllowed =
-    "a non-empty name of at most 100 characters without '/', '\\' or control characters";
+    "a non-empty name of at most 100 bytes (UTF-8) without '/', '\\' or control characters";
 static_assert(kMaxNameLength == 100, "kObjectNameAllowed and the schema's Name rules say 100");
 bool usableObjectName(std::string_view s) {
   return !s.empty() && s.size() <= kMaxNameLength && std::none_of(s.begin(), s.end(), [](char c) {

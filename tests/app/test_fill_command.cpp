@@ -83,7 +83,7 @@ TEST(FillCommand, NamesFollowTheScenesFluidNameRule) {
       {"a/b", "'a/b' is not a valid fluid name"},
       {"''", "is not a valid fluid name"},
       {"'two words'", "'two words' is not a valid fluid name"},
-      {std::string(101, 'n'), "the name is 101 characters long"},
+      {std::string(101, 'n'), "the name is 101 bytes long"},
   };
   for (const Case& c : cases)
     for (const std::string mode : {"--scene-snippet", "--out x.ply"}) {

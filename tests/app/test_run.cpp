@@ -302,7 +302,7 @@ TEST(Run, NamesOfTheLongestAllowedLengthWriteEveryFormat) {
     const RunResult refused = runSoftsub("run --formats all,mesh,vdb --out p longer.scene", tmp.path());
     EXPECT_EQ(refused.code, 2) << which << ": " << refused.err;
     EXPECT_NE(refused.err.find("longer.scene:1: "), std::string::npos) << refused.err;
-    EXPECT_NE(refused.err.find("/Name: the name is 101 characters long"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("/Name: the name is 101 bytes long"), std::string::npos) << refused.err;
     EXPECT_FALSE(fs::exists(tmp / "p")) << which;
   }
 }
