@@ -59,16 +59,19 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, c
   struct Input {
     fs::path path;
     int line;
-    const char* element;
+    std::string element;  // as the reader names it
   };
   const scene::SceneDesc& desc = loaded.desc;
   const fs::path base = desc.baseDir.empty() ? fs::path(".") : fs::path(desc.baseDir);
   std::vector<Input> inputs;
-  for (const scene::ObjectDesc& o : desc.objects)
-    if (!o.geometry.empty()) inputs.push_back({base / o.geometry, o.line, "Object/Geometry"});
+  for (std::size_t k = 0; k < desc.objects.size(); ++k)
+    if (const scene::ObjectDesc& o = desc.objects[k]; !o.geometry.empty())
+      inputs.push_back({base / o.geometry, o.line, fmt::format("Object[{}]/Geometry", k + 1)});
   for (const scene::FluidDesc& f : desc.fluids)
-    for (const scene::FillDesc& fill : f.fills)
-      if (fill.shape == scene::FillShape::Mesh) inputs.push_back({base / fill.geometry, fill.line, "Fill/Geometry"});
+    for (std::size_t k = 0; k < f.fills.size(); ++k)
+      if (f.fills[k].shape == scene::FillShape::Mesh)
+        inputs.push_back({base / f.fills[k].geometry, f.fills[k].line,
+                          fmt::format("Fluid '{}'/Fill[{}]/Geometry", f.name, k + 1)});
   // Both exist (the input was just read): one file, whatever the paths' spelling.
   const auto same = [](const fs::path& a, const fs::path& b) {
     std::error_code ec;

@@ -48,7 +48,7 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
 /// --out of the scene's own folder would replace them. Compared by file identity (a link
 /// or another spelling of the path is the same file). Also refused: an input mesh in
 /// one of the run's frame folders (ply/, mesh/) under a name the run's frames take
-/// there. The InputError names the <Geometry> line. Nothing is created or changed.
+/// there. The InputError names the <Object> or <Fill> line. Nothing is created or changed.
 void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, const std::filesystem::path& outDir);
 
 }  // namespace softsub::app

@@ -4,11 +4,7 @@
 
 namespace softsub {
 
-namespace {
-
-/// A file name as an error message shows it: control characters escaped (\t, \n, \r,
-/// \xHH), so that the message stays one line and an odd name can be told and typed.
-std::string fileText(std::string_view file) {
+std::string displayFile(std::string_view file) {
   std::string s;
   for (const char c : file) {
     const auto u = static_cast<unsigned char>(c);
@@ -28,15 +24,11 @@ std::string fileText(std::string_view file) {
   return s;
 }
 
-}  // namespace
-
-std::string displayFile(std::string_view file) { return fileText(file); }
-
 std::string formatInputError(const InputLocation& where, const std::string& problem,
                              const std::string& allowed) {
   std::string s;
   s.reserve(where.file.size() + where.element.size() + problem.size() + allowed.size() + 32);
-  s.append(where.file.empty() ? std::string("<input>") : fileText(where.file));
+  s.append(where.file.empty() ? std::string("<input>") : displayFile(where.file));
   if (where.line > 0) s.append(":").append(std::to_string(where.line));
   s.append(": ");
   if (!where.element.empty()) s.append(where.element).append(": ");

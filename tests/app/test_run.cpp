@@ -366,7 +366,7 @@ TEST(Run, ARunNeverWritesOverTheScenesInputMesh) {
   for (const std::string& out : std::vector<std::string>{".", "./", quote(tmp.path())}) {
     const RunResult r = runSoftsub("run --out " + out + " shot.scene", tmp.path());
     EXPECT_EQ(r.code, 2) << out << ": " << r.err;
-    EXPECT_NE(r.err.find("shot.scene:3: Object/Geometry: the mesh"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("shot.scene:3: Object[1]/Geometry: the mesh"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("would write over"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(tmp / "shot.0000.sim")) << out;
     std::ifstream in(tmp / "shotGeo/crate.obj");
