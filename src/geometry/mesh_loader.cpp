@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <assimp/DefaultIOSystem.h>
+#include <assimp/IOStream.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -380,12 +381,56 @@ void checkFaces(const aiScene& scene, const std::string& name) {
 /// Assimp's file access for one mesh file: the files the mesh refers to (a glTF's
 /// buffers, an OBJ's material library) are opened only inside `root`; the others are
 /// refused and remembered, so that the error can name them.
-class ConfinedIOSystem : public Assimp::DefaultIOSystem {
+// An OBJ or MTL file read as if it had no UTF-8 byte-order mark (Windows editors save
+// one): assimp's OBJ reader took the mark for part of the first line, lost the first
+// vertex, and refused the file as "vertex index out of range". Offsets count from after
+// the mark; the stream it wraps is its own (assimp's Close deletes this one).
+class WithoutByteOrderMark : public Assimp::IOStream {
+ public:
+  explicit WithoutByteOrderMark(Assimp::IOStream* inner) : inner_(inner) {}
+  ~WithoutByteOrderMark() override { delete inner_; }
+  WithoutByteOrderMark(const WithoutByteOrderMark&) = delete;
+  WithoutByteOrderMark& operator=(const WithoutByteOrderMark&) = delete;
+  size_t Read(void* buffer, size_t size, size_t count) override { return inner_->Read(buffer, size, count); }
+  size_t Write(const void* buffer, size_t size, size_t count) override { return inner_->Write(buffer, size, count); }
+  aiReturn Seek(size_t offset, aiOrigin origin) override {
+    return inner_->Seek(origin == aiOrigin_SET ? offset + kMark : offset, origin);
+  }
+  size_t Tell() const override { return inner_->Tell() - kMark; }
+  size_t FileSize() const override { return inner_->FileSize() - kMark; }
+  void Flush() override { inner_->Flush(); }
+
+ private:
+  static constexpr size_t kMark = 3;
+  Assimp::IOStream* inner_;
+};
+
+// Assimp's file system, with OBJ and MTL files opened past a byte-order mark.
+class MeshIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
+    std::string ext = fs::path(file).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (stream == nullptr || (ext != ".obj" && ext != ".mtl") || std::string_view(mode).find('r') == std::string_view::npos)
+      return stream;
+    unsigned char head[3] = {};
+    if (stream->Read(head, 1, 3) == 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF) {
+      auto* past = new WithoutByteOrderMark(stream);
+      past->Seek(0, aiOrigin_SET);
+      return past;
+    }
+    stream->Seek(0, aiOrigin_SET);
+    return stream;
+  }
+};
+
+class ConfinedIOSystem : public MeshIOSystem {
  public:
   explicit ConfinedIOSystem(fs::path root) : root_(std::move(root)) {}
   bool Exists(const char* file) const override { return allowed(file) && DefaultIOSystem::Exists(file); }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
-    return allowed(file) ? DefaultIOSystem::Open(file, mode) : nullptr;
+    return allowed(file) ? MeshIOSystem::Open(file, mode) : nullptr;
   }
   /// The refused paths, each quoted (and where a link took it).
   [[nodiscard]] const std::vector<std::string>& refused() const { return refused_; }
@@ -458,6 +503,8 @@ TriangleMesh loadMesh(const fs::path& file, MeshLoadReport* report, const fs::pa
     if (ec) root = confineTo;
     confined = new ConfinedIOSystem(root);
     importer.SetIOHandler(confined);  // the importer owns it from here
+  } else {
+    importer.SetIOHandler(new MeshIOSystem);
   }
   // Only steps that reshape what the file holds: nothing invents geometry (no normals,
   // hole filling or smoothing). SortByPType puts points and lines in meshes of their own,

@@ -106,6 +106,17 @@ TEST(LoadMesh, ObjQuadsAreTriangulatedAndWelded) {
   EXPECT_TRUE(report.warnings.empty());
 }
 
+// Windows editors save text with a UTF-8 byte-order mark; assimp's OBJ reader took it
+// for part of the first line, lost the first vertex and refused the file ("vertex index
+// out of range"). An OBJ with the mark loads as the same OBJ without it, confined to its
+// folder (scenes) or not (`softsub fill`).
+TEST(LoadMesh, AnObjWithAByteOrderMarkLoadsAsWithout) {
+  TempDir dir;
+  const fs::path marked = dir.write("marked.obj", std::string("\xEF\xBB\xBF") + kCubeObj);
+  expectUnitCube(loadMesh(marked, nullptr));
+  expectUnitCube(loadMesh(marked, nullptr, dir.path()));
+}
+
 TEST(LoadMesh, AsciiStl) {
   // The same cube as independent facets, the way STL stores it.
   const Vec3 corner[8] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
