@@ -154,16 +154,19 @@ void printRunFolderInfo(const std::string& dirText) {
     for (const std::int64_t f : checkpoints) list += (list.empty() ? "" : ", ") + std::to_string(f);
     fmt::print("  checkpoints: {}\n", checkpoints.empty() ? std::string("none") : list);
     // Where --resume would start: the checkpoints it would try, newest first, until one
-    // reads intact (its checksum), as resumeFrom does before restoring.
+    // reads intact (its checksum) and is its frame's, of this run (the manifest's
+    // settings: a checkpoint copied from another run is skipped), as resumeFrom does.
     std::int64_t resumeAt = -1;
     for (const std::size_t k : run.checkpointed(dir)) {
       const cache::Manifest& m = run.manifests[k];
       const std::filesystem::path p = dir / m.checkpoint->path;
       try {
-        if (solver::checkpointInfo(cache::readFileBytes(p), p.string()).frame == m.frame) {
+        const solver::CheckpointInfo c = solver::checkpointInfo(cache::readFileBytes(p), p.string());
+        if (c.frame == m.frame && c.fingerprint == m.fingerprint) {
           resumeAt = m.frame;
           break;
         }
+        if (c.frame == m.frame) fmt::print("  {}: made by another run (other settings): skipped\n", p.string());
       } catch (const std::exception& e) {
         fmt::print("  {}\n", e.what());
       }

@@ -309,6 +309,25 @@ TEST(Resume, InfoTellsWhichFramesAreCompleteAndWhereResumeContinues) {
   EXPECT_EQ(runSoftsub("info " + quote(tmp.path()), tmp.path()).code, 2) << "not a run's folder";
 }
 
+// A checkpoint copied in from a run with other settings (same scene and particles,
+// another --substeps) is skipped by --resume, which then continued after frame 2;
+// info said "after frame 3". Both now go by the manifest's settings.
+TEST(Resume, InfoSkipsACheckpointOfAnotherRunAsResumeDoes) {
+  TempDir tmp;
+  const std::string run = "run -q " + scenePath("two-fluids.scene");
+  ASSERT_EQ(runSoftsub(run + " --frames 3 --out o", tmp.path()).code, 0);
+  ASSERT_EQ(runSoftsub(run + " --frames 3 --substeps 9 --out other", tmp.path()).code, 0);
+  fs::copy_file(tmp / "other/checkpoint/two-fluids.0003.state", tmp / "o/checkpoint/two-fluids.0003.state",
+                fs::copy_options::overwrite_existing);
+  const RunResult info = runSoftsub("info o", tmp.path());
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("made by another run (other settings): skipped"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("would continue after frame 2"), std::string::npos) << info.out;
+  const RunResult resumed = runSoftsub(run + " --frames 4 --resume --out o", tmp.path());
+  EXPECT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_TRUE(fs::exists(tmp / "o/manifest/two-fluids.0004.manifest"));
+}
+
 TEST(Resume, AFullDiskIsAnIoErrorWithEarlierFramesCompleteAndResumeFinishesTheRun) {
   TempDir tmp;
   const std::string base = "run -q " + scenePath("two-fluids.scene") + " --frames 8";
