@@ -488,7 +488,17 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, Parti
     st.velocity = vel_[b];
     // L from the solved angular velocity, with the tensor of this substep's orientation.
     st.angularMomentum = invInertia_[b].isZero() ? Vec3::Zero().eval() : Vec3(invInertia_[b].inverse() * omega_[b]);
-    integratePose(info, st, vel_[b] + pseudoVel_[b], omega_[b] + pseudoOmega_[b], dt);
+    // The turn uses L's angular velocity at the middle of the substep (the tensor of the
+    // orientation half a turn on): with the start's, a freely spinning asymmetric box
+    // gained 6% of its energy in 30 s at 8 substeps a frame (the tensor turns with the
+    // body, so w at the start is not w over the substep).
+    Vec3 omega = omega_[b];
+    if (const double half = 0.5 * omega.norm() * dt; half > 0) {
+      BodyState mid = st;
+      mid.orientation = (Quat(Eigen::AngleAxisd(half, omega.normalized())) * st.orientation).normalized();
+      omega = worldInverseInertia(info, mid) * st.angularMomentum;
+    }
+    integratePose(info, st, vel_[b] + pseudoVel_[b], omega + pseudoOmega_[b], dt);
   }
   // New poses: body particles to their places (which also sets omega_ from the new
   // pose), then fluid kept outside the bodies.

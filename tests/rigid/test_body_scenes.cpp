@@ -204,6 +204,28 @@ TEST(BodyScenes, FluidNeverEndsInsideAStaticBody) {
 namespace softsub::scenarios {
 namespace {
 
+// A box spinning freely (no gravity, no contact) about no principal axis keeps its
+// kinetic energy and angular momentum. The turn once used the angular velocity at the
+// start of each substep, and the energy grew 6.4% in 30 s at 8 substeps a frame; with
+// the midpoint's it changes by about 1e-6 in 30 s.
+TEST(BodyScenes, AFreelySpinningBoxKeepsItsEnergyAndAngularMomentum) {
+  scene::SceneDesc d;
+  d.simulation.gravity = Vec3(0, 0, 0);
+  scene::ObjectDesc o;
+  o.name = "box";
+  o.shape = ObjectShape::Box;
+  o.size = {2, 1, 3};
+  o.mass = 6;
+  o.initialAngularVelocity = Vec3(90, 57.29578, 30);
+  d.objects.push_back(o);
+  BodyRun run(d);
+  const double e0 = rigid::kineticEnergy(run.info(0), run.body(0));
+  const Vec3 l0 = run.body(0).angularMomentum;
+  for (int f = 0; f < 240; ++f) run.sim->advanceFrame();  // 10 s (the old turn: +2%)
+  EXPECT_NEAR(rigid::kineticEnergy(run.info(0), run.body(0)), e0, 1e-5 * e0);
+  EXPECT_TRUE(run.body(0).angularMomentum.isApprox(l0, 1e-12));
+}
+
 // A body thin along an axis has a principal moment of inertia near 0: a cylinder of
 // radius 1e-30 had one of 5e-61, whose inverse overflowed the solver's floats and stopped
 // the run at the first contact ("angular momentum is not finite"). Each moment is kept at
