@@ -242,7 +242,12 @@ int runCommand(const RunOptions& o) {
   // The scene's name names every file of the run and the preview: with neither, no file.
   checkOutputNames(loaded, formats, anyFormat(formats) || o.preview);
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
-  if (anyFormat(formats)) checkInputsKept(loaded, formats, outDir);
+  if (anyFormat(formats)) {
+    checkInputsKept(loaded, formats, outDir);
+    std::vector<std::string> fluidNames;
+    for (const scene::FluidDesc& f : loaded.desc.fluids) fluidNames.push_back(f.name);
+    refuseOtherScenesFiles(outDir, loaded.name, formats, fluidNames);
+  }
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
 

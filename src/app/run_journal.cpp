@@ -157,4 +157,38 @@ void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sc
     removeQuietly(cache::checkpointPath(outDir, sceneName, f));
 }
 
+void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
+                            const cache::Formats& formats, const std::vector<std::string>& fluidNames) {
+  if (!formats.pdc && !formats.mesh && !formats.vdb) return;
+  // What this run writes under a fluid's name: "pdc/<fluid>Shape.", "mesh/<fluid>.", "vdb/<fluid>.".
+  std::vector<std::string> prefixes;
+  for (const std::string& f : fluidNames) {
+    if (formats.pdc) prefixes.push_back("pdc/" + f + "Shape.");
+    if (formats.mesh) prefixes.push_back("mesh/" + f + ".");
+    if (formats.vdb) prefixes.push_back("vdb/" + f + ".");
+  }
+  for (const std::string& other : cache::manifestSceneNames(outDir)) {
+    if (other == sceneName) continue;
+    for (const std::int64_t frame : cache::manifestFrames(outDir, other)) {
+      const std::filesystem::path path = cache::manifestPath(outDir, other, frame);
+      cache::Manifest m;
+      try {
+        m = cache::decodeManifest(cache::readFileBytes(path), path.string());
+      } catch (const std::exception&) {
+        continue;  // a manifest that does not read names no file
+      }
+      for (const cache::ManifestEntry& e : m.files)
+        for (const std::string& prefix : prefixes)
+          if (e.path.starts_with(prefix))
+            throw InputError({outDir.string(), 0, "--out"},
+                             fmt::format("the folder holds '{}', a file of scene '{}' (listed in {}), which this run "
+                                         "of '{}' would write over: files of a fluid are named after the fluid, "
+                                         "not the scene",
+                                         e.path, other, path.lexically_relative(outDir).generic_string(), sceneName),
+                             "another --out for this scene, or fluids named apart from the other scene's");
+      break;  // one readable manifest lists the scene's fluids
+    }
+  }
+}
+
 }  // namespace softsub::app

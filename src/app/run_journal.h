@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cache/frame_writer.h"
 #include "cache/manifest.h"
 #include "core/snapshot.h"
 #include "solver/simulation.h"
@@ -75,5 +76,14 @@ void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sc
 /// Before a fresh (not resumed) run writes anything: removes the folder's manifests and
 /// checkpoints of `sceneName`, which describe an earlier run.
 void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName);
+
+/// Refuses a run of `sceneName` into `outDir` that would write over another scene's
+/// files there: PDC files, surfaces and VDB grids are named after the fluid, not the
+/// scene, so two scenes with a fluid of the same name in one folder replaced each
+/// other's caches without a word (and `info` then called both runs complete). Looks at
+/// the first readable manifest of every other scene in the folder. InputError naming
+/// the file, the other scene and its manifest; nothing is changed.
+void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
+                            const cache::Formats& formats, const std::vector<std::string>& fluidNames);
 
 }  // namespace softsub::app

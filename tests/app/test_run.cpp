@@ -439,5 +439,27 @@ TEST(Run, AFluidNameNoMayaShapeCanTakeIsWarnedAboutForPdc) {
   EXPECT_EQ(sim.err.find("Maya"), std::string::npos) << sim.err;
 }
 
+// PDC files, surfaces and grids are named after the fluid, not the scene: a second
+// scene with a fluid of the same name, run into the same folder, replaced the first's
+// PDC files without a word (and info then called both runs complete). Refused before
+// anything is written; files named after the scene (.sim, .ply) may share a folder.
+TEST(Run, ASecondSceneNeverWritesOverAnotherScenesFluidFiles) {
+  TempDir tmp;
+  fs::copy_file(examplesDir() / "two-fluids.scene", tmp / "a.scene");
+  fs::copy_file(examplesDir() / "two-fluids.scene", tmp / "b.scene");
+  ASSERT_EQ(runSoftsub("run -q a.scene --frames 1 --out o", tmp.path()).code, 0);
+  const std::string before = readFile(tmp / "o/pdc/syrupShape.250.pdc");
+  const RunResult r = runSoftsub("run b.scene --frames 1 --out o", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("a file of scene 'a' (listed in manifest/a.0000.manifest), which this run of 'b' would "
+                       "write over"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "o/b.0000.sim"));
+  EXPECT_EQ(readFile(tmp / "o/pdc/syrupShape.250.pdc"), before);
+  EXPECT_EQ(runSoftsub("run -q b.scene --frames 1 --formats sim,ply --out o", tmp.path()).code, 0);
+  EXPECT_EQ(runSoftsub("run -q a.scene --frames 1 --out o", tmp.path()).code, 0) << "a scene rewrites its own";
+}
+
 }  // namespace
 }  // namespace softsub::apptest
