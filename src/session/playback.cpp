@@ -62,7 +62,8 @@ Playback::Playback(const fs::path& path) {
   fs::path folder = path.lexically_normal();
   if (folder.filename().empty() && folder.has_parent_path()) folder = folder.parent_path();
   std::string wanted;  // the scene whose frames to play, when known
-  if (fs::is_regular_file(folder, ec)) {
+  const bool givenFrame = fs::is_regular_file(folder, ec);  // a frame file names its scene
+  if (givenFrame) {
     const std::optional<FrameName> name = parseFrameName(folder.filename().string());
     if (!name) throw InputError({path.string(), 0, "file"}, "is not a recorded frame", kExpected);
     wanted = name->stem;
@@ -99,7 +100,7 @@ Playback::Playback(const fs::path& path) {
     }
   }
   sceneName_ = wanted;
-  if (byScene.size() > 1) {
+  if (byScene.size() > 1 && !givenFrame) {
     std::string others;
     for (const auto& [stem, frames] : byScene)
       if (stem != wanted) others += fmt::format("{}'{}'", others.empty() ? "" : ", ", stem);

@@ -108,6 +108,7 @@ TEST(Playback, OpensAFrameFileAndPicksTheFoldersScene) {
             "take that scene)");
   const Playback other(folder / "other.0003.sim");
   EXPECT_EQ(other.sceneName(), "other");
+  EXPECT_TRUE(other.notes().empty());  // chosen by its frame file: nothing to note
   EXPECT_EQ(other.frameCount(), 5u);
   EXPECT_EQ(other.frameNumber(4), 4);
   // Any folder of frames: the scene with the most.
