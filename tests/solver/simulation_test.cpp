@@ -260,6 +260,34 @@ TEST(Walls, SlidingFrictionIsCoulombAndIndependentOfSubsteps) {
   }
 }
 
+// A particle at rest on the floor stays at rest with a velocity of 0: it once bounced
+// off at e times what gravity gave it each substep, so a resting particle carried an
+// upward velocity into the caches (motion blur would smear it). A drop still bounces.
+TEST(Walls, AParticleRestingOnTheFloorHasNoVelocityAndADropStillBounces) {
+  for (const Integrator integrator : {Integrator::SymplecticEuler, Integrator::VelocityVerlet}) {
+    Model m = slider(8, 0.1, 0.5);
+    m.integrator = integrator;
+    State s;
+    s.particles.add(0, 0.5f, 0, 0, 0, 0, 0, 0);  // on the floor
+    s.particles.add(0, 3.0f, 5, 0, 0, 0, 0, 0);  // 2.5 above it
+    Simulation sim(m, s);
+    double highestAfterBounce = 0;
+    bool fell = false;
+    for (int f = 0; f < 24; ++f) {
+      sim.advanceFrame();
+      const ParticleStore& p = sim.state().particles;
+      const std::size_t rest = p.px[0] < 2.5f ? 0 : 1, drop = 1 - rest;
+      EXPECT_EQ(p.py[rest], 0.5f);
+      // Verlet's closing half kick adds g dt / 2 after the walls.
+      EXPECT_LE(std::abs(p.vy[rest]), integrator == Integrator::VelocityVerlet ? 0.5 * 9.81 * sim.dt() + 1e-6 : 0.0);
+      fell = fell || p.vy[drop] > 0;
+      if (fell) highestAfterBounce = std::max(highestAfterBounce, static_cast<double>(p.py[drop]));
+    }
+    // Dropped 2.5 onto the floor at e = 0.5: it rises about 0.25 * 2.5 again.
+    EXPECT_NEAR(highestAfterBounce, 0.5 + 0.25 * 2.5, 0.1) << static_cast<int>(integrator);
+  }
+}
+
 TEST(Walls, ImpactScalesTangentialVelocityByOneMinusFriction) {
   // Head-on enough that the Coulomb cap does not bind: v_t -> (1 - mu) v_t, v_n -> -e v_n.
   Model m = slider(8, 0.3, 0.5);
