@@ -384,7 +384,9 @@ struct Simulation::ParticleOps {
   // bouncing off at e |v_n|: a bounce each substep left particles that do not move with
   // an outward velocity in the caches (4.4 units/s in a pile pressed against the walls),
   // which motion blur would smear. Such a bounce would rise e² (2.5 a dt)² / 2a, a few
-  // thousandths of a particle. No walls at all without an <Environment>.
+  // thousandths of a particle. Not for e = 1: an elastic wall reflects exactly (energy
+  // is conserved; the LAMMPS comparison's reflective box). No walls at all without an
+  // <Environment>.
   void walls(std::size_t i) const {
     float* pos[3] = {s.px.data(), s.py.data(), s.pz.data()};
     float* vel[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
@@ -402,7 +404,7 @@ struct Simulation::ParticleOps {
       const float g = a == 0 ? gx : a == 1 ? gy : gz;
       const float f = a == 0 ? s.f[i].x : a == 1 ? s.f[i].y : s.f[i].z;
       const float towards = (f * mats[m].inverseMass + g) * static_cast<float>(side);  // > 0: into the wall
-      const bool resting = vn <= 2.5f * towards * restDt;
+      const bool resting = e < 1.0f && vn <= 2.5f * towards * restDt;  // e = 1: exactly elastic
       v = resting ? 0.0f : -e * v;
       float& t1 = vel[(a + 1) % 3][i];
       float& t2 = vel[(a + 2) % 3][i];
