@@ -364,6 +364,7 @@ int runCommand(const RunOptions& o) {
   // into or through a part of another object one particle thick (contacts see overlaps,
   // not paths), and nothing else would say so.
   bool warnedFast = o.quiet;
+  constexpr int kMost = solver::kMaxStableSubsteps;  // the most substeps a frame may take
   const auto warnIfFast = [&](std::int64_t frame) {
     // --adaptive chooses each frame's substeps from the speeds (a quarter of the contact
     // reach a substep): only its ceiling leaves an object this fast.
@@ -378,8 +379,8 @@ int runCommand(const RunOptions& o) {
                "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
                shownFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
                2 * fast->particleRadius,
-               o.adaptive && o.maxSubsteps < 10000 ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
-               : !o.adaptive && needed <= 10000  ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
+               o.adaptive && o.maxSubsteps < kMost ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
+               : !o.adaptive && needed <= kMost  ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
                                                  : std::string("no substep count up to 10,000 a frame keeps it "
                                                                "within its particles' diameter: slow it down or "
                                                                "give it larger particles (ParticleSize)"));
@@ -398,7 +399,7 @@ int runCommand(const RunOptions& o) {
                "warning: {}: frame {} needed {:.0f} substeps for --adaptive's limits, and --max-substeps held it "
                "to {}: particles may move further a substep than is stable, be flung about and gain energy; {}\n",
                shownFile, frame, needed, sim.substeps(),
-               o.maxSubsteps < 10000 && needed <= 10000
+               o.maxSubsteps < kMost && needed <= kMost
                    ? fmt::format("raise --max-substeps to {:.0f}", needed)
                    : std::string("no count up to 10,000 a frame suffices: soften the forces (MaximumForce, "
                                  "Viscosity) or slow the motion"));

@@ -378,9 +378,6 @@ void checkFaces(const aiScene& scene, const std::string& name) {
   }
 }
 
-/// Assimp's file access for one mesh file: the files the mesh refers to (a glTF's
-/// buffers, an OBJ's material library) are opened only inside `root`; the others are
-/// refused and remembered, so that the error can name them.
 // An OBJ or MTL file read as if it had no UTF-8 byte-order mark (Windows editors save
 // one): assimp's OBJ reader took the mark for part of the first line, lost the first
 // vertex, and refused the file as "vertex index out of range". Offsets count from after
@@ -410,8 +407,7 @@ class MeshIOSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
-    std::string ext = fs::path(file).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerCase(fs::path(file).extension().string());
     if (stream == nullptr || (ext != ".obj" && ext != ".mtl") || std::string_view(mode).find('r') == std::string_view::npos)
       return stream;
     unsigned char head[3] = {};
@@ -425,6 +421,9 @@ class MeshIOSystem : public Assimp::DefaultIOSystem {
   }
 };
 
+/// Assimp's file access for one mesh file: the files the mesh refers to (a glTF's
+/// buffers, an OBJ's material library) are opened only inside `root`; the others are
+/// refused and remembered, so that the error can name them.
 class ConfinedIOSystem : public MeshIOSystem {
  public:
   explicit ConfinedIOSystem(fs::path root) : root_(std::move(root)) {}
