@@ -100,7 +100,8 @@ int fillCommand(const FillOptions& o) {
     }
   }();
   const bool talk = !o.quiet && stderrIsTerminal();
-  for (const std::string& w : report.warnings) fmt::print(stderr, "warning: {}: {}\n", displayFile(o.mesh), w);
+  for (const std::string& w : report.warnings)
+    fmt::print(stderr, "warning: {}: {}\n", displayFile(o.mesh), w);
   for (const std::string& w : r.warnings) fmt::print(stderr, "warning: {}: {}\n", displayFile(o.mesh), w);
   if (r.points.empty())
     throw InputError({o.mesh, 0, "mesh"}, "the fill produced no particles",
@@ -114,7 +115,8 @@ int fillCommand(const FillOptions& o) {
     // The colour the <Fluid> block the snippet makes would get (the scene's default):
     // the PLY's colours are a fluid's Colour x 255, never a white of nothing.
     const Vec3 colour = scene::FluidDesc{}.colour;
-    f.colour = {static_cast<float>(colour.x()), static_cast<float>(colour.y()), static_cast<float>(colour.z())};
+    f.colour = {static_cast<float>(colour.x()), static_cast<float>(colour.y()),
+                static_cast<float>(colour.z())};
     for (std::size_t k = 0; k < r.points.size(); ++k) {
       f.ids.push_back(static_cast<std::uint32_t>(k));
       const Vec3& p = r.points[k];

@@ -269,7 +269,8 @@ int renderCommand(const RenderOptions& o) {
                  loaded.desc.simulation.frames);
     scene::Compiled compiled = scene::compile(loaded.desc);
     if (!o.quiet)  // warnings, unlike notes, also for a pipe or a log (as run's)
-      for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", displayFile(loaded.file), w);
+      for (const std::string& w : compiled.warnings)
+        fmt::print(stderr, "warning: {}: {}\n", displayFile(loaded.file), w);
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));

@@ -233,10 +233,11 @@ int runCommand(const RunOptions& o) {
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
   if (o.adaptive && o.maxSubsteps < loaded.desc.simulation.substeps)
-    throw InputError({"command line", 0, "--max-substeps"},
-                     fmt::format("{} is below the scene's Substeps ({}), the fewest --adaptive uses", o.maxSubsteps,
-                                 loaded.desc.simulation.substeps),
-                     fmt::format("{} to 10000, or fewer Substeps (--substeps)", loaded.desc.simulation.substeps));
+    throw InputError(
+        {"command line", 0, "--max-substeps"},
+        fmt::format("{} is below the scene's Substeps ({}), the fewest --adaptive uses", o.maxSubsteps,
+                    loaded.desc.simulation.substeps),
+        fmt::format("{} to 10000, or fewer Substeps (--substeps)", loaded.desc.simulation.substeps));
   const std::string& sceneFile = loaded.file;
   const std::string shownFile = displayFile(sceneFile);  // in warnings: one line whatever the name
   // The scene's name names every file of the run and the preview: with neither, no file.
@@ -294,11 +295,12 @@ int runCommand(const RunOptions& o) {
     if (formats.pdc)
       for (const scene::FluidDesc& f : loaded.desc.fluids)
         if (f.name.find('-') != std::string::npos || (f.name[0] >= '0' && f.name[0] <= '9'))
-          fmt::print(stderr,
-                     "warning: {}: fluid '{}': Maya node names cannot hold '-' or start with a digit, so no "
-                     "Maya particle shape can be named '{}Shape' to read pdc/{}Shape.*.pdc; for Maya, name the "
-                     "fluid with letters, digits and '_', starting with a letter or '_'\n",
-                     shownFile, f.name, f.name, f.name);
+          fmt::print(
+              stderr,
+              "warning: {}: fluid '{}': Maya node names cannot hold '-' or start with a digit, so no "
+              "Maya particle shape can be named '{}Shape' to read pdc/{}Shape.*.pdc; for Maya, name the "
+              "fluid with letters, digits and '_', starting with a letter or '_'\n",
+              shownFile, f.name, f.name, f.name);
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
@@ -374,16 +376,17 @@ int runCommand(const RunOptions& o) {
     warnedFast = true;
     const double needed = std::ceil(sim.substeps() * fast->travel / (2 * fast->particleRadius));
     progress.end();
-    fmt::print(stderr,
-               "warning: {}: object '{}' moves up to {:.3g} units a substep at frame {}, more than its particles' "
-               "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
-               shownFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
-               2 * fast->particleRadius,
-               o.adaptive && o.maxSubsteps < kMost ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
-               : !o.adaptive && needed <= kMost  ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
-                                                 : std::string("no substep count up to 10,000 a frame keeps it "
-                                                               "within its particles' diameter: slow it down or "
-                                                               "give it larger particles (ParticleSize)"));
+    fmt::print(
+        stderr,
+        "warning: {}: object '{}' moves up to {:.3g} units a substep at frame {}, more than its particles' "
+        "diameter {:g}: it can pass into or through thin parts of other objects; {}\n",
+        shownFile, compiled.model.bodies.bodies[fast->body].name, fast->travel, frame,
+        2 * fast->particleRadius,
+        o.adaptive && o.maxSubsteps < kMost ? fmt::format("raise --max-substeps (now {})", o.maxSubsteps)
+        : !o.adaptive && needed <= kMost ? fmt::format("raise Substeps to {:.0f} or use --adaptive", needed)
+                                         : std::string("no substep count up to 10,000 a frame keeps it "
+                                                       "within its particles' diameter: slow it down or "
+                                                       "give it larger particles (ParticleSize)"));
   };
   warnIfFast(std::max<std::int64_t>(resumed.frame, 0));
   // Once a run: --adaptive held back by its ceiling leaves particles moving further a
@@ -395,14 +398,15 @@ int runCommand(const RunOptions& o) {
     if (warnedCapped || needed <= 0) return;
     warnedCapped = true;
     progress.end();
-    fmt::print(stderr,
-               "warning: {}: frame {} needed {:.0f} substeps for --adaptive's limits, and --max-substeps held it "
-               "to {}: particles may move further a substep than is stable, be flung about and gain energy; {}\n",
-               shownFile, frame, needed, sim.substeps(),
-               o.maxSubsteps < kMost && needed <= kMost
-                   ? fmt::format("raise --max-substeps to {:.0f}", needed)
-                   : std::string("no count up to 10,000 a frame suffices: soften the forces (MaximumForce, "
-                                 "Viscosity) or slow the motion"));
+    fmt::print(
+        stderr,
+        "warning: {}: frame {} needed {:.0f} substeps for --adaptive's limits, and --max-substeps held it "
+        "to {}: particles may move further a substep than is stable, be flung about and gain energy; {}\n",
+        shownFile, frame, needed, sim.substeps(),
+        o.maxSubsteps < kMost && needed <= kMost
+            ? fmt::format("raise --max-substeps to {:.0f}", needed)
+            : std::string("no count up to 10,000 a frame suffices: soften the forces (MaximumForce, "
+                          "Viscosity) or slow the motion"));
   };
   hooks.onProgress = [&](const solver::FrameProgress& p) {
     fewestSubsteps = std::min(fewestSubsteps, sim.substeps());

@@ -166,7 +166,8 @@ void printRunFolderInfo(const std::string& dirText) {
           resumeAt = m.frame;
           break;
         }
-        if (c.frame == m.frame) fmt::print("  {}: made by another run (other settings): skipped\n", p.string());
+        if (c.frame == m.frame)
+          fmt::print("  {}: made by another run (other settings): skipped\n", p.string());
       } catch (const std::exception& e) {
         fmt::print("  {}\n", e.what());
       }

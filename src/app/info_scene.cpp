@@ -50,7 +50,8 @@ void printSceneInfo(const std::string& path) {
   const scene::Compiled compiled = scene::compile(d);
   // info is asked for: the reader's warnings always go to stderr.
   for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
-  for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", displayFile(path), w);
+  for (const std::string& w : compiled.warnings)
+    fmt::print(stderr, "warning: {}: {}\n", displayFile(path), w);
   const auto& sim = d.simulation;
   fmt::print("scene {}: {}\n", loaded.name, path);
   fmt::print("simulation: {} frames at {:g} fps ({:g} s), {} substeps (dt {:.4g} s), {}, gravity {}\n",

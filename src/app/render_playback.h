@@ -3,8 +3,8 @@
 /// frames, and the container, meshes and camera to draw them with.
 #include <cstdint>
 #include <memory>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "core/snapshot.h"
 #include "render/camera.h"

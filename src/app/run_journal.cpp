@@ -180,12 +180,13 @@ void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::stri
       for (const cache::ManifestEntry& e : m.files)
         for (const std::string& prefix : prefixes)
           if (e.path.starts_with(prefix))
-            throw InputError({outDir.string(), 0, "--out"},
-                             fmt::format("the folder holds '{}', a file of scene '{}' (listed in {}), which this run "
-                                         "of '{}' would write over: files of a fluid are named after the fluid, "
-                                         "not the scene",
-                                         e.path, other, path.lexically_relative(outDir).generic_string(), sceneName),
-                             "another --out for this scene, or fluids named apart from the other scene's");
+            throw InputError(
+                {outDir.string(), 0, "--out"},
+                fmt::format("the folder holds '{}', a file of scene '{}' (listed in {}), which this run "
+                            "of '{}' would write over: files of a fluid are named after the fluid, "
+                            "not the scene",
+                            e.path, other, path.lexically_relative(outDir).generic_string(), sceneName),
+                "another --out for this scene, or fluids named apart from the other scene's");
       break;  // one readable manifest lists the scene's fluids
     }
   }

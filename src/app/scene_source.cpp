@@ -54,7 +54,8 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
       checkOutputName(obj.name, "Object/Name", loaded.file);
 }
 
-void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, const std::filesystem::path& outDir) {
+void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
+                     const std::filesystem::path& outDir) {
   namespace fs = std::filesystem;
   struct Input {
     fs::path path;
@@ -78,11 +79,12 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, c
     return fs::equivalent(a, b, ec) && !ec;
   };
   const auto refuse = [&](const Input& in, const fs::path& out) {
-    throw InputError({loaded.file, in.line, in.element},
-                     fmt::format("the mesh '{}' is a file this run would write over ('{}')", in.path.string(),
-                                 out.string()),
-                     "another --out (a run writes each object's mesh to <out>/<scene>Geo/<object>.obj), or the "
-                     "input mesh moved where the run writes nothing");
+    throw InputError(
+        {loaded.file, in.line, in.element},
+        fmt::format("the mesh '{}' is a file this run would write over ('{}')", in.path.string(),
+                    out.string()),
+        "another --out (a run writes each object's mesh to <out>/<scene>Geo/<object>.obj), or the "
+        "input mesh moved where the run writes nothing");
   };
   for (const Input& in : inputs) {
     if (formats.sim)

@@ -49,6 +49,7 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
 /// or another spelling of the path is the same file). Also refused: an input mesh in
 /// one of the run's frame folders (ply/, mesh/) under a name the run's frames take
 /// there. The InputError names the <Object> or <Fill> line. Nothing is created or changed.
-void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats, const std::filesystem::path& outDir);
+void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
+                     const std::filesystem::path& outDir);
 
 }  // namespace softsub::app

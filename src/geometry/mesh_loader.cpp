@@ -389,7 +389,9 @@ class WithoutByteOrderMark : public Assimp::IOStream {
   WithoutByteOrderMark(const WithoutByteOrderMark&) = delete;
   WithoutByteOrderMark& operator=(const WithoutByteOrderMark&) = delete;
   size_t Read(void* buffer, size_t size, size_t count) override { return inner_->Read(buffer, size, count); }
-  size_t Write(const void* buffer, size_t size, size_t count) override { return inner_->Write(buffer, size, count); }
+  size_t Write(const void* buffer, size_t size, size_t count) override {
+    return inner_->Write(buffer, size, count);
+  }
   aiReturn Seek(size_t offset, aiOrigin origin) override {
     return inner_->Seek(origin == aiOrigin_SET ? offset + kMark : offset, origin);
   }
@@ -408,7 +410,8 @@ class MeshIOSystem : public Assimp::DefaultIOSystem {
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
     const std::string ext = lowerCase(fs::path(file).extension().string());
-    if (stream == nullptr || (ext != ".obj" && ext != ".mtl") || std::string_view(mode).find('r') == std::string_view::npos)
+    if (stream == nullptr || (ext != ".obj" && ext != ".mtl") ||
+        std::string_view(mode).find('r') == std::string_view::npos)
       return stream;
     unsigned char head[3] = {};
     if (stream->Read(head, 1, 3) == 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF) {

@@ -207,11 +207,12 @@ Compiled compile(const SceneDesc& desc) {
       // As a box or sphere fill that makes nothing is refused when the scene is read (a
       // mesh fill's count is known only now, from the fill itself).
       if (r.points.empty())
-        throw InputError({desc.file, fill.line, fmt::format("Fluid '{}'/Fill[{}]", fd.name, k + 1)},
-                         fmt::format("the mesh fill of '{}' makes no particles at Spacing {:g}", fill.geometry,
-                                     fill.spacing),
-                         "a Spacing smaller than the mesh's thickness, or <Surface>true</Surface> for a thin or "
-                         "open mesh");
+        throw InputError(
+            {desc.file, fill.line, fmt::format("Fluid '{}'/Fill[{}]", fd.name, k + 1)},
+            fmt::format("the mesh fill of '{}' makes no particles at Spacing {:g}", fill.geometry,
+                        fill.spacing),
+            "a Spacing smaller than the mesh's thickness, or <Surface>true</Surface> for a thin or "
+            "open mesh");
       points.insert(points.end(), r.points.begin(), r.points.end());
     }
     solver::FluidInfo info;

@@ -44,9 +44,10 @@ bool validName(std::string_view s) {
 // The problem with a name that is too long (kMaxNameLength), or empty for one that is not.
 std::string lengthProblem(std::string_view s) {
   if (s.size() <= kMaxNameLength) return {};
-  return fmt::format("the name is {} bytes long: its output file names (with frame numbers, extensions and "
-                     "the temporary name of an atomic write) would pass the system's 255-byte limit",
-                     s.size());
+  return fmt::format(
+      "the name is {} bytes long: its output file names (with frame numbers, extensions and "
+      "the temporary name of an atomic write) would pass the system's 255-byte limit",
+      s.size());
 }
 
 // An object's name becomes part of file names: the rule of cache::checkFileNamePart (not

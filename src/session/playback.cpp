@@ -104,9 +104,10 @@ Playback::Playback(const fs::path& path) {
     std::string others;
     for (const auto& [stem, frames] : byScene)
       if (stem != wanted) others += fmt::format("{}'{}'", others.empty() ? "" : ", ", stem);
-    notes_.push_back(fmt::format("the folder holds frames of {} scenes: '{}' taken, not {} (give one of a scene's "
-                                 ".sim files to take that scene)",
-                                 byScene.size(), wanted, others));
+    notes_.push_back(
+        fmt::format("the folder holds frames of {} scenes: '{}' taken, not {} (give one of a scene's "
+                    ".sim files to take that scene)",
+                    byScene.size(), wanted, others));
   }
   auto& frames = byScene.at(wanted);
   std::sort(frames.begin(), frames.end());

@@ -21,7 +21,8 @@ TEST(FillCommand, WritesAPlyWhoseCountMatchesTheVolume) {
   const cache::PlyCloud cloud = cache::readPlyFile(tmp / "box.ply");
   EXPECT_NEAR(static_cast<double>(cloud.vertexCount), 4.0 * 4 * 4 / (0.5 * 0.5 * 0.5), 0.03 * 512);
   // The colour of the <Fluid> the snippet would make (Colour 0.8 0.5 0.2 x 255), not white.
-  for (const auto& [name, value] : {std::pair{"red", 204.0}, std::pair{"green", 128.0}, std::pair{"blue", 51.0}}) {
+  for (const auto& [name, value] :
+       {std::pair{"red", 204.0}, std::pair{"green", 128.0}, std::pair{"blue", 51.0}}) {
     const cache::PlyProperty* channel = cloud.find(name);
     ASSERT_NE(channel, nullptr) << name;
     ASSERT_EQ(channel->values.size(), cloud.vertexCount);

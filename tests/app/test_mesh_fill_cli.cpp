@@ -55,8 +55,9 @@ TEST(MeshFillCli, AMeshFillThatMakesNoParticlesExitsTwoAtTheFillLine) {
   writeText(tmp / "t.scene", meshScene("geo/tri.obj"));
   const RunResult r = runSoftsub("run t.scene --frames 2", tmp.path());
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("error: t.scene:5: Fluid 'goo'/Fill[1]: the mesh fill of 'geo/tri.obj' makes no particles"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("error: t.scene:5: Fluid 'goo'/Fill[1]: the mesh fill of 'geo/tri.obj' makes no particles"),
+      std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(tmp / "tSim"));
 }

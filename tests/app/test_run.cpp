@@ -334,8 +334,9 @@ TEST(Run, AnOutputNameFromTheSceneFileNameIsRefusedNamingTheFile) {
 // "File name too long" (exit 3), leaving a partial folder.
 TEST(Run, ASceneNameLongerThan100BytesIsRefusedBeforeAnythingIsWritten) {
   TempDir tmp;
-  const std::string scene = "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
-                            "<Fluid><Name>a</Name><Particles>0 1 0</Particles></Fluid></Scene>\n";
+  const std::string scene =
+      "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
+      "<Fluid><Name>a</Name><Particles>0 1 0</Particles></Fluid></Scene>\n";
   std::ofstream(tmp / (std::string(100, 'L') + ".scene")) << scene;
   std::ofstream(tmp / (std::string(101, 'L') + ".scene")) << scene;
   const RunResult ok = runSoftsub("run --out o " + std::string(100, 'L') + ".scene", tmp.path());
@@ -355,8 +356,9 @@ TEST(Run, ASceneNameLongerThan100BytesIsRefusedBeforeAnythingIsWritten) {
 TEST(Run, ARunNeverWritesOverTheScenesInputMesh) {
   TempDir tmp;
   fs::create_directories(tmp / "shotGeo");
-  const std::string mesh = "# the artist's crate\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                           "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string mesh =
+      "# the artist's crate\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+      "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   std::ofstream(tmp / "shotGeo/crate.obj") << mesh;
   std::ofstream(tmp / "shot.scene")
       << "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>\n"
@@ -395,11 +397,13 @@ TEST(Run, MaxSubstepsIsCheckedAndAFrameItHoldsBackIsWarnedAbout) {
   EXPECT_NE(alone.err.find("--max-substeps requires --adaptive"), std::string::npos) << alone.err;
   const RunResult below = runSoftsub("run fast.scene --adaptive --max-substeps 7 --out o", tmp.path());
   EXPECT_EQ(below.code, 2) << below.err;
-  EXPECT_NE(below.err.find("--max-substeps: 7 is below the scene's Substeps (8)"), std::string::npos) << below.err;
+  EXPECT_NE(below.err.find("--max-substeps: 7 is below the scene's Substeps (8)"), std::string::npos)
+      << below.err;
   EXPECT_FALSE(fs::exists(tmp / "o"));
   // 500 units/s at 24 frames a second and a quarter of the 1.5 interaction distance a
   // substep: 56 substeps a frame.
-  const RunResult capped = runSoftsub("run fast.scene --adaptive --max-substeps 8 --formats none --stats", tmp.path());
+  const RunResult capped =
+      runSoftsub("run fast.scene --adaptive --max-substeps 8 --formats none --stats", tmp.path());
   EXPECT_EQ(capped.code, 0) << capped.err;
   EXPECT_NE(capped.err.find("warning: fast.scene: frame 1 needed 56 substeps for --adaptive's limits, and "
                             "--max-substeps held it to 8"),
@@ -416,7 +420,8 @@ TEST(Run, MaxSubstepsIsCheckedAndAFrameItHoldsBackIsWarnedAbout) {
 TEST(Run, AWarningShowsTheSceneFileNameOnOneLine) {
   TempDir tmp;
   fs::copy_file(examplesDir() / "jelly-block.scene", tmp / "x\ny.scene");
-  const RunResult r = runSoftsub("run --frames 1 --substeps 1 --formats none " + quote(tmp / "x\ny.scene"), tmp.path());
+  const RunResult r =
+      runSoftsub("run --frames 1 --substeps 1 --formats none " + quote(tmp / "x\ny.scene"), tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("x\\ny.scene: the stability estimate calls"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("x\ny.scene"), std::string::npos) << r.err;
@@ -426,12 +431,14 @@ TEST(Run, AWarningShowsTheSceneFileNameOnOneLine) {
 // start with a digit: a fluid named so gets a warning when its PDC files are written.
 TEST(Run, AFluidNameNoMayaShapeCanTakeIsWarnedAboutForPdc) {
   TempDir tmp;
-  std::ofstream(tmp / "m.scene") << "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
-                                    "<Fluid><Name>goo-1</Name><Particles>0 1 0</Particles></Fluid>"
-                                    "<Fluid><Name>honey_2</Name><Particles>2 1 0</Particles></Fluid></Scene>\n";
+  std::ofstream(tmp / "m.scene")
+      << "<Scene version=\"1\"><Simulation><Frames>1</Frames></Simulation><Environment/>"
+         "<Fluid><Name>goo-1</Name><Particles>0 1 0</Particles></Fluid>"
+         "<Fluid><Name>honey_2</Name><Particles>2 1 0</Particles></Fluid></Scene>\n";
   const RunResult pdc = runSoftsub("run m.scene --out o", tmp.path());
   EXPECT_EQ(pdc.code, 0) << pdc.err;
-  EXPECT_NE(pdc.err.find("warning: m.scene: fluid 'goo-1': Maya node names cannot hold '-'"), std::string::npos)
+  EXPECT_NE(pdc.err.find("warning: m.scene: fluid 'goo-1': Maya node names cannot hold '-'"),
+            std::string::npos)
       << pdc.err;
   EXPECT_EQ(pdc.err.find("'honey_2'"), std::string::npos) << pdc.err;
   const RunResult sim = runSoftsub("run m.scene --out p --formats sim", tmp.path());
@@ -451,14 +458,16 @@ TEST(Run, ASecondSceneNeverWritesOverAnotherScenesFluidFiles) {
   const std::string before = readFile(tmp / "o/pdc/syrupShape.250.pdc");
   const RunResult r = runSoftsub("run b.scene --frames 1 --out o", tmp.path());
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("a file of scene 'a' (listed in manifest/a.0000.manifest), which this run of 'b' would "
-                       "write over"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("a file of scene 'a' (listed in manifest/a.0000.manifest), which this run of 'b' would "
+                 "write over"),
+      std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(tmp / "o/b.0000.sim"));
   EXPECT_EQ(readFile(tmp / "o/pdc/syrupShape.250.pdc"), before);
   EXPECT_EQ(runSoftsub("run -q b.scene --frames 1 --formats sim,ply --out o", tmp.path()).code, 0);
-  EXPECT_EQ(runSoftsub("run -q a.scene --frames 1 --out o", tmp.path()).code, 0) << "a scene rewrites its own";
+  EXPECT_EQ(runSoftsub("run -q a.scene --frames 1 --out o", tmp.path()).code, 0)
+      << "a scene rewrites its own";
 }
 
 }  // namespace

@@ -251,7 +251,8 @@ TEST(BodyScenes, AThinBodysLeastMomentOfInertiaIsBoundedAndItRuns) {
   const double perpendicular = 2.0 * 16.0 / 12.0;  // m (3 r^2 + h^2) / 12, r = 0
   EXPECT_NEAR(eig.eigenvalues().maxCoeff(), perpendicular, 1e-9 * perpendicular);
   EXPECT_NEAR(eig.eigenvalues().minCoeff(), 1e-6 * perpendicular, 1e-12 * perpendicular);
-  EXPECT_TRUE(Mat3(run.info(1).inverseInertia.inverse()).isApprox(geometry::cylinderInertia(2, 0.5, 4), 1e-12));
+  EXPECT_TRUE(
+      Mat3(run.info(1).inverseInertia.inverse()).isApprox(geometry::cylinderInertia(2, 0.5, 4), 1e-12));
   for (int f = 0; f < 24; ++f) run.sim->advanceFrame();  // falls, lands and topples: no blow-up
   EXPECT_TRUE(run.body(0).angularMomentum.allFinite());
   EXPECT_LT(run.body(0).position.y(), 3.0);

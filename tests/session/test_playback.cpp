@@ -103,9 +103,10 @@ TEST(Playback, OpensAFrameFileAndPicksTheFoldersScene) {
   EXPECT_EQ(Playback(folder.string() + "/").frameCount(), 3u);
   // mesh and render took one silently: the choice is noted, with how to take the other.
   ASSERT_EQ(Playback(folder).notes().size(), 1u);
-  EXPECT_EQ(Playback(folder).notes()[0],
-            "the folder holds frames of 2 scenes: 'small' taken, not 'other' (give one of a scene's .sim files to "
-            "take that scene)");
+  EXPECT_EQ(
+      Playback(folder).notes()[0],
+      "the folder holds frames of 2 scenes: 'small' taken, not 'other' (give one of a scene's .sim files to "
+      "take that scene)");
   const Playback other(folder / "other.0003.sim");
   EXPECT_EQ(other.sceneName(), "other");
   EXPECT_TRUE(other.notes().empty());  // chosen by its frame file: nothing to note

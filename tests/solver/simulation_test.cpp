@@ -279,7 +279,8 @@ TEST(Walls, AParticleRestingOnTheFloorHasNoVelocityAndADropStillBounces) {
       const std::size_t rest = p.px[0] < 2.5f ? 0 : 1, drop = 1 - rest;
       EXPECT_EQ(p.py[rest], 0.5f);
       // Verlet's closing half kick adds g dt / 2 after the walls.
-      EXPECT_LE(std::abs(p.vy[rest]), integrator == Integrator::VelocityVerlet ? 0.5 * 9.81 * sim.dt() + 1e-6 : 0.0);
+      EXPECT_LE(std::abs(p.vy[rest]),
+                integrator == Integrator::VelocityVerlet ? 0.5 * 9.81 * sim.dt() + 1e-6 : 0.0);
       fell = fell || p.vy[drop] > 0;
       if (fell) highestAfterBounce = std::max(highestAfterBounce, static_cast<double>(p.py[drop]));
     }
