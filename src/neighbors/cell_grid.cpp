@@ -546,6 +546,12 @@ std::int64_t CellGrid::findCell(std::uint64_t key) const {
   }
 }
 
+std::array<std::uint32_t, 3> CellGrid::cellFields(std::size_t c) const {
+  const std::uint64_t key = cellKey_[c];
+  return {static_cast<std::uint32_t>(key & kMask), static_cast<std::uint32_t>((key >> kBits) & kMask),
+          static_cast<std::uint32_t>((key >> (2 * kBits)) & kMask)};
+}
+
 std::size_t CellGrid::memoryBytes() const {
   std::size_t phases = 0;
   for (const auto& p : phases_) phases += p.capacity() * 4;

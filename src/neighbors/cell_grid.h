@@ -61,6 +61,14 @@ class CellGrid {
   [[nodiscard]] SlotRange cell(std::size_t c) const {
     return {cellStart_[c], cellStart_[c + 1]};
   }
+  /// Cell c's coordinates along the sort key's minor, middle and major axes (keyAxes()),
+  /// counted from the lowest occupied cell of each: floor(position / cellSize()) of its
+  /// particles at the last rebuild, less that of the lowest. Exact unless wraps().
+  /// Non-decreasing along the major axis in cell order.
+  [[nodiscard]] std::array<std::uint32_t, 3> cellFields(std::size_t c) const;
+  /// Whether the last rebuild's coordinates wrapped (an axis spanning 2^21 - 1 cells or
+  /// more): far-apart cells may then share a key.
+  [[nodiscard]] bool wraps() const { return torus_; }
   /// Finds the slot ranges of a cell's forward neighbour cells (merged where
   /// contiguous). Pairs (i in cell c, j in these ranges) plus pairs i < j inside cell c
   /// are every candidate pair exactly once.

@@ -58,6 +58,11 @@ struct Model {
   /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
   /// often (docs/architecture.md, "The pair list").
   double pairListSkin = 0.1;
+  /// The pair list's second validity test (solver/list_guard.h): a list whose two
+  /// largest displacements add up to the skin is kept while the particles moved
+  /// together (a falling or flowing body of goo). Off: rebuilt at once (tests and
+  /// benchmarks compare the two).
+  bool listGuard = true;
   /// The blow-up check after every substep (docs/architecture.md, "Blow-up checks"): a
   /// particle or body whose speed would carry it further than this many interaction
   /// distances (its material's longest cutoff; with bodies, at least the contact reach)

@@ -206,8 +206,11 @@ bool Simulation::listIsStale() const {
 
 void Simulation::computeForces() {
   ParticleStore& s = state_.particles;
-  const bool rebuild = knownStale_ >= 0 ? knownStale_ == 1 : listIsStale();
+  bool rebuild = knownStale_ >= 0 ? knownStale_ == 1 : listIsStale();
   knownStale_ = -1;
+  // A list the displacements call stale may still hold every pair in reach when the
+  // particles moved together (solver/list_guard.h).
+  if (rebuild && listValid_ && model_.listGuard && guard_.proves(grid_, s, ref_)) rebuild = false;
   if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the
     // reference positions' memory (they are rewritten below).
@@ -658,6 +661,7 @@ void Simulation::holdReference(std::span<const float> x, std::span<const float> 
     ref[n + i] = y[i];
     ref[2 * n + i] = z[i];
   });
+  guard_.hold(cellSize_, skin_);
 }
 
 void Simulation::restore(State state, std::vector<float> refX, std::vector<float> refY, std::vector<float> refZ) {
@@ -889,7 +893,7 @@ std::size_t Simulation::memoryBytes() const {
   for (auto* a : {&s.px, &s.py, &s.pz, &s.vx, &s.vy, &s.vz}) b += a->capacity() * 4;
   b += s.f.capacity() * sizeof(Force);
   b += s.material.capacity() * 2 + s.owner.capacity() * 4 + s.id.capacity() * 4;
-  b += list_.memoryBytes() + listWork_.size();
+  b += list_.memoryBytes() + listWork_.size() + guard_.memoryBytes();
   b += rigidPairs_.capacity() * sizeof(rigid::SlotPair) + rigid_.bodySlots().size() * 4;
   b += model_.bodies.particleCount() * 12;  // body-space offsets
   return b + grid_.memoryBytes();

@@ -13,6 +13,7 @@
 #include "fluid/pair_forces.h"
 #include "neighbors/cell_grid.h"
 #include "rigid/solver.h"
+#include "solver/list_guard.h"
 #include "solver/model.h"
 
 namespace softsub::solver {
@@ -181,6 +182,9 @@ class Simulation {
   // grid uses as its work memory during a rebuild (core/work_buffer.h).
   WorkBuffer listWork_;
   const float* ref_ = nullptr;  // x of every slot, then y, then z
+  // The second test of a list the two largest displacements call stale: particles that
+  // moved together (solver/list_guard.h).
+  ListGuard guard_;
   // Rigid bodies.
   rigid::RigidSolver rigid_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle

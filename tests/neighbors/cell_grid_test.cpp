@@ -61,6 +61,36 @@ TEST(CellGrid, MatchesBruteForceOnRandomClouds) {
   }
 }
 
+TEST(CellGrid, CellFieldsAreEachParticlesCellCountedFromTheLowest) {
+  // Clouds stretched along each axis in turn, so that each becomes the layers' axis.
+  for (int stretched = 0; stretched < 3; ++stretched) {
+    ParticleStore s = cloud(800, -3, 3, 40 + static_cast<std::uint32_t>(stretched));
+    std::vector<float>* axis[3] = {&s.px, &s.py, &s.pz};
+    for (float& v : *axis[stretched]) v = 5.0f * v - 11.0f;
+    const float h = 0.7f;
+    CellGrid g;
+    g.rebuild(s, h);
+    ASSERT_FALSE(g.wraps());
+    const std::array<int, 3> axes = g.keyAxes();
+    EXPECT_EQ(axes[2], stretched);
+    std::array<double, 3> lowest{};
+    for (int f = 0; f < 3; ++f) {
+      const std::vector<float>& v = *axis[axes[f]];
+      lowest[f] = std::floor(static_cast<double>(*std::min_element(v.begin(), v.end())) / h);
+    }
+    std::uint32_t previousMajor = 0;
+    for (std::size_t c = 0; c < g.cellCount(); ++c) {
+      const std::array<std::uint32_t, 3> k = g.cellFields(c);
+      EXPECT_GE(k[2], previousMajor) << "cell " << c;
+      previousMajor = k[2];
+      for (std::uint32_t i = g.cell(c).begin; i < g.cell(c).end; ++i)
+        for (int f = 0; f < 3; ++f)
+          ASSERT_EQ(static_cast<double>(k[f]), std::floor(static_cast<double>((*axis[axes[f]])[i]) / h) - lowest[f])
+              << "cell " << c << " slot " << i << " field " << f;
+    }
+  }
+}
+
 TEST(CellGrid, FarOutliersNeitherLosePairsNorGrowMemory) {
   ParticleStore s = cloud(2000, 0, 6, 42);
   const std::size_t before = [&] {
