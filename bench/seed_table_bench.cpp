@@ -66,6 +66,40 @@ void BM_SlumpingCube(benchmark::State& st) {
 }
 BENCHMARK(BM_SlumpingCube)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
+// A ball of goo falling onto the floor of a container from a quarter of its radius
+// above it, timed over its first 36 frames (it lands at about frame 19 and splashes): the case of the pair
+// list's second validity test (solver/list_guard.h), which keeps the lists the ball's
+// fall alone would make stale. Second argument: the test on (1) or off (0). Every
+// repetition starts afresh, so both time the same frames.
+void BM_FallingBall(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  solver::Model model = scenarios::oneFluidModel(n);
+  model.listGuard = st.range(1) != 0;
+  const double radius = std::cbrt(3.0 * static_cast<double>(n) / (4.0 * 3.14159265358979));
+  solver::Container c;
+  c.lo = {-3 * radius, 0, -3 * radius};
+  c.hi = {3 * radius, 8 * radius, 3 * radius};
+  model.container = c;
+  solver::State state;
+  state.particles.reserve(n);
+  const auto side = static_cast<int>(std::ceil(2 * radius)) + 2;
+  for (int i = -side; i <= side && state.particles.size() < n; ++i)
+    for (int j = -side; j <= side && state.particles.size() < n; ++j)
+      for (int k = -side; k <= side && state.particles.size() < n; ++k)
+        if (i * i + j * j + k * k <= radius * radius + 1e-9)
+          state.particles.add(static_cast<float>(i), static_cast<float>(1.25 * radius + j), static_cast<float>(k), 0, -2, 0,
+                              0, 0);
+  model.fluids[0].count = static_cast<std::uint32_t>(state.particles.size());
+  const double count = static_cast<double>(state.particles.size());
+  solver::Simulation sim(model, std::move(state));
+  for (auto _ : st) sim.advanceFrame();
+  const double steps = static_cast<double>(st.iterations()) * model.substeps;
+  st.counters["particle-steps/s"] = benchmark::Counter(steps * count, benchmark::Counter::kIsRate);
+  st.counters["substeps/list"] = steps / static_cast<double>(std::max<std::int64_t>(1, sim.listBuilds()));
+}
+BENCHMARK(BM_FallingBall)->Args({25000, 0})->Args({25000, 1})->Iterations(36)->Repetitions(3)
+    ->Unit(benchmark::kMillisecond);
+
 // A dam of goo flat in z (two lattice layers deep, twice as long in x as high in y)
 // collapsing in a container just as deep: the grid must cut it into layers along x, or
 // both cores share one or two layers (thread scaling, docs/benchmarks.md).

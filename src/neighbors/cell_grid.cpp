@@ -19,7 +19,7 @@ namespace {
 // -Wpedantic quiet).
 __extension__ typedef unsigned __int128 U128;
 
-constexpr int kBits = 21;
+constexpr int kBits = CellGrid::kKeyBits;
 constexpr std::uint64_t kMask = (std::uint64_t{1} << kBits) - 1;
 constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 
@@ -544,12 +544,6 @@ std::int64_t CellGrid::findCell(std::uint64_t key) const {
     if (k == kEmpty) return -1;
     h = (h + 1) & hashMask_;
   }
-}
-
-std::array<std::uint32_t, 3> CellGrid::cellFields(std::size_t c) const {
-  const std::uint64_t key = cellKey_[c];
-  return {static_cast<std::uint32_t>(key & kMask), static_cast<std::uint32_t>((key >> kBits) & kMask),
-          static_cast<std::uint32_t>((key >> (2 * kBits)) & kMask)};
 }
 
 std::size_t CellGrid::memoryBytes() const {

@@ -37,6 +37,8 @@ struct SlotRange {
 /// once: the basis for applying Newton's third law.
 class CellGrid {
  public:
+  /// Bits of each coordinate in a cell's sort key (minor, middle, major from bit 0).
+  static constexpr int kKeyBits = 21;
   /// The layers' axis is chosen by each rebuild from the particles' spread (keyAxes()).
   CellGrid() = default;
   /// The layers' axis fixed: 0 x, 1 y, 2 z (tests and tools that need a known layout);
@@ -65,7 +67,12 @@ class CellGrid {
   /// counted from the lowest occupied cell of each: floor(position / cellSize()) of its
   /// particles at the last rebuild, less that of the lowest. Exact unless wraps().
   /// Non-decreasing along the major axis in cell order.
-  [[nodiscard]] std::array<std::uint32_t, 3> cellFields(std::size_t c) const;
+  [[nodiscard]] std::array<std::uint32_t, 3> cellFields(std::size_t c) const {
+    constexpr std::uint64_t mask = (std::uint64_t{1} << kKeyBits) - 1;
+    const std::uint64_t key = cellKey_[c];
+    return {static_cast<std::uint32_t>(key & mask), static_cast<std::uint32_t>((key >> kKeyBits) & mask),
+            static_cast<std::uint32_t>((key >> (2 * kKeyBits)) & mask)};
+  }
   /// Whether the last rebuild's coordinates wrapped (an axis spanning 2^21 - 1 cells or
   /// more): far-apart cells may then share a key.
   [[nodiscard]] bool wraps() const { return torus_; }

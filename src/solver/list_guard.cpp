@@ -49,15 +49,15 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   }
   // Blocks of 2, 4, 8 ... cells a side, until there are no more blocks than cells (a
   // scene spread thin): a wider block is as valid, only less often conclusive.
-  width_ = 2;
+  widthShift_ = 1;
   for (;;) {
     double product = 1;
     for (int a = 0; a < 3; ++a) {
-      dims_[a] = hi[a] / width_ + 1;
+      dims_[a] = (hi[a] >> widthShift_) + 1;
       product *= static_cast<double>(dims_[a]);
     }
     if (product <= static_cast<double>(nc + 64)) break;
-    width_ *= 2;
+    ++widthShift_;
   }
   blocks_ = dims_[0] * dims_[1] * dims_[2];
   Scratch& sc = *scratch_;
@@ -65,11 +65,11 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   sc.radius.resize(blocks_);
   // Cells come in key order, the major axis most significant: each slab is a run.
   sc.slabCell.assign(dims_[2] + 1, static_cast<std::uint32_t>(nc));
-  for (std::size_t c = nc; c-- > 0;) sc.slabCell[grid.cellFields(c)[2] / width_] = static_cast<std::uint32_t>(c);
+  for (std::size_t c = nc; c-- > 0;) sc.slabCell[grid.cellFields(c)[2] >> widthShift_] = static_cast<std::uint32_t>(c);
   for (std::size_t k = dims_[2]; k-- > 0;) sc.slabCell[k] = std::min(sc.slabCell[k], sc.slabCell[k + 1]);
 }
 
-bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref) {
+bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref, std::size_t hint) {
   if (!laidOut_) layOut(grid);
   if (blocks_ == 0) return false;
   const std::size_t n = s.size();
@@ -83,10 +83,10 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
   float* box = sc.box.data();
   float* radius = sc.radius.data();
   const std::size_t d0 = dims_[0], d1 = dims_[1], d2 = dims_[2], perSlab = d0 * d1;
-  const std::uint32_t w = width_;
+  const int w = widthShift_;
   const auto blockOf = [&](std::size_t c) {
     const std::array<std::uint32_t, 3> k = grid.cellFields(c);
-    return (static_cast<std::size_t>(k[2] / w) * d1 + k[1] / w) * d0 + k[0] / w;
+    return (static_cast<std::size_t>(k[2] >> w) * d1 + (k[1] >> w)) * d0 + (k[0] >> w);
   };
   const auto centre = [&](std::size_t b, int a) { return 0.5f * (box[6 * b + a] + box[6 * b + 3 + a]); };
   // Rounding of the sums below is covered by a margin a hundred thousand times smaller
@@ -118,50 +118,68 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
 
   // 1. Slab by slab: each block's box of displacements, then its radius around the
   // box's middle (the slab's particles still in cache), then its pairs within the slab.
-  // A displacement that is not finite makes its block's radius infinite.
+  // A displacement that is not finite makes its block's radius infinite. False when a
+  // pair fails.
+  const auto slab = [&](std::size_t k) {
+    for (std::size_t b = k * perSlab; b < (k + 1) * perSlab; ++b) {
+      std::fill_n(box + 6 * b, 3, kInf);
+      std::fill_n(box + 6 * b + 3, 3, -kInf);
+      radius[b] = 0;
+    }
+    const std::size_t c0 = sc.slabCell[k], c1 = sc.slabCell[k + 1];
+    for (std::size_t c = c0; c < c1; ++c) {
+      const neighbors::SlotRange slots = grid.cell(c);
+      float lx = kInf, ly = kInf, lz = kInf, hx = -kInf, hy = -kInf, hz = -kInf;
+      bool finite = true;
+      for (std::uint32_t i = slots.begin; i < slots.end; ++i) {
+        const float dx = px[i] - rx[i], dy = py[i] - ry[i], dz = pz[i] - rz[i];
+        finite &= dx * dx + dy * dy + dz * dz < kInf;
+        lx = std::min(lx, dx), ly = std::min(ly, dy), lz = std::min(lz, dz);
+        hx = std::max(hx, dx), hy = std::max(hy, dy), hz = std::max(hz, dz);
+      }
+      const std::size_t b = blockOf(c);
+      float* bb = box + 6 * b;
+      bb[0] = std::min(bb[0], lx), bb[1] = std::min(bb[1], ly), bb[2] = std::min(bb[2], lz);
+      bb[3] = std::max(bb[3], hx), bb[4] = std::max(bb[4], hy), bb[5] = std::max(bb[5], hz);
+      if (!finite) radius[b] = kInf;
+    }
+    for (std::size_t c = c0; c < c1; ++c) {
+      const neighbors::SlotRange slots = grid.cell(c);
+      const std::size_t b = blockOf(c);
+      const float cx = centre(b, 0), cy = centre(b, 1), cz = centre(b, 2);
+      float r2 = 0;
+      for (std::uint32_t i = slots.begin; i < slots.end; ++i) {
+        const float ex = px[i] - rx[i] - cx, ey = py[i] - ry[i] - cy, ez = pz[i] - rz[i] - cz;
+        r2 = std::max(r2, ex * ex + ey * ey + ez * ez);
+      }
+      radius[b] = std::max(radius[b], r2);
+    }
+    for (std::size_t b = k * perSlab; b < (k + 1) * perSlab; ++b)
+      radius[b] = box[6 * b] <= box[6 * b + 3] ? std::sqrt(radius[b]) : -1.0f;
+    for (std::size_t i1 = 0; i1 < d1; ++i1)
+      for (std::size_t i0 = 0; i0 < d0; ++i0)
+        if (!touching(i0, i1, k, 0)) return false;
+    return true;
+  };
+  // First the slab of the hinted slot (the largest displacement: where a failure is
+  // most likely), alone, then the others in parallel.
+  std::size_t first = d2;
+  if (hint < n) {
+    std::size_t lo = 0, hi = grid.cellCount();  // the cell that holds the slot
+    while (hi - lo > 1) {
+      const std::size_t mid = (lo + hi) / 2;
+      (grid.cell(mid).begin <= hint ? lo : hi) = mid;
+    }
+    first = grid.cellFields(lo)[2] >> w;
+    if (!slab(first)) return false;
+  }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d2, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       if (failed.load(std::memory_order_relaxed)) return;
-      for (std::size_t b = k * perSlab; b < (k + 1) * perSlab; ++b) {
-        std::fill_n(box + 6 * b, 3, kInf);
-        std::fill_n(box + 6 * b + 3, 3, -kInf);
-        radius[b] = 0;
+      if (k != first && !slab(k)) {
+        failed.store(true, std::memory_order_relaxed);
+        return;
       }
-      const std::size_t c0 = sc.slabCell[k], c1 = sc.slabCell[k + 1];
-      for (std::size_t c = c0; c < c1; ++c) {
-        const neighbors::SlotRange slots = grid.cell(c);
-        float lx = kInf, ly = kInf, lz = kInf, hx = -kInf, hy = -kInf, hz = -kInf;
-        bool finite = true;
-        for (std::uint32_t i = slots.begin; i < slots.end; ++i) {
-          const float dx = px[i] - rx[i], dy = py[i] - ry[i], dz = pz[i] - rz[i];
-          finite &= dx * dx + dy * dy + dz * dz < kInf;
-          lx = std::min(lx, dx), ly = std::min(ly, dy), lz = std::min(lz, dz);
-          hx = std::max(hx, dx), hy = std::max(hy, dy), hz = std::max(hz, dz);
-        }
-        float* bb = box + 6 * blockOf(c);
-        bb[0] = std::min(bb[0], lx), bb[1] = std::min(bb[1], ly), bb[2] = std::min(bb[2], lz);
-        bb[3] = std::max(bb[3], hx), bb[4] = std::max(bb[4], hy), bb[5] = std::max(bb[5], hz);
-        if (!finite) radius[blockOf(c)] = kInf;
-      }
-      for (std::size_t c = c0; c < c1; ++c) {
-        const neighbors::SlotRange slots = grid.cell(c);
-        const std::size_t b = blockOf(c);
-        const float cx = centre(b, 0), cy = centre(b, 1), cz = centre(b, 2);
-        float r2 = 0;
-        for (std::uint32_t i = slots.begin; i < slots.end; ++i) {
-          const float ex = px[i] - rx[i] - cx, ey = py[i] - ry[i] - cy, ez = pz[i] - rz[i] - cz;
-          r2 = std::max(r2, ex * ex + ey * ey + ez * ez);
-        }
-        radius[b] = std::max(radius[b], r2);
-      }
-      for (std::size_t b = k * perSlab; b < (k + 1) * perSlab; ++b)
-        radius[b] = box[6 * b] <= box[6 * b + 3] ? std::sqrt(radius[b]) : -1.0f;
-      for (std::size_t i1 = 0; i1 < d1; ++i1)
-        for (std::size_t i0 = 0; i0 < d0; ++i0)
-          if (!touching(i0, i1, k, 0)) {
-            failed.store(true, std::memory_order_relaxed);
-            return;
-          }
     }
   });
   if (failed.load()) return false;

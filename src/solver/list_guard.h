@@ -26,6 +26,7 @@
 /// checkpoint continues bit for bit. docs/architecture.md, "The pair list".
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -48,8 +49,10 @@ class ListGuard {
   /// Whether every pair that can be within its reach at the store's current positions
   /// was within reach + skin at `ref` (x of every slot, then y, then z: the positions
   /// the grid was built at), so is listed. False when any displacement is not finite or
-  /// the grid's coordinates wrap.
-  [[nodiscard]] bool proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref);
+  /// the grid's coordinates wrap. `hint`: a slot whose block is looked at first (the
+  /// largest displacement, where a failure is likeliest); it changes the cost only.
+  [[nodiscard]] bool proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref,
+                            std::size_t hint = SIZE_MAX);
   /// Number of blocks laid out for the current list (0: none yet, or no test; tests).
   [[nodiscard]] std::size_t blocks() const { return blocks_; }
   /// Bytes held, scratch of every thread included.
@@ -61,7 +64,7 @@ class ListGuard {
   void layOut(const neighbors::CellGrid& grid);
 
   bool laidOut_ = false;
-  std::uint32_t width_ = 2;          // cells a block side
+  int widthShift_ = 1;               // a block is 2^widthShift_ cells a side
   std::size_t dims_[3] = {0, 0, 0};  // blocks along the key's minor, middle, major axes
   std::size_t blocks_ = 0;
   float reach_ = 0, skin_ = 0;

@@ -45,18 +45,22 @@ constexpr std::size_t kRun = 32;
 // a parallel reduction gives the same pair whatever the split.
 struct Top2 {
   float first = 0, second = 0;
-  void add(float d2) {
+  // A slot whose displacement is the largest (any one of equal ones: a hint for where
+  // ListGuard looks first, which cannot change its answer).
+  std::uint32_t slot = 0;
+  void add(float d2, std::size_t i) {
     if (!(d2 == d2)) d2 = INFINITY;
     if (d2 > first) {
       second = first;
       first = d2;
+      slot = static_cast<std::uint32_t>(i);
     } else if (d2 > second) {
       second = d2;
     }
   }
   void join(const Top2& o) {
-    add(o.first);
-    add(o.second);
+    add(o.first, o.slot);
+    add(o.second, o.slot);  // never above o.first: cannot become the largest
   }
   // Adds the displacements of slots [b, e) from the reference positions (x of every
   // slot, then y, then z). Run by run: the squares into a buffer and their largest bit
@@ -77,7 +81,7 @@ struct Top2 {
       const std::uint32_t top = m == kRun ? squares(px + r, py + r, pz + r, rx + r, ry + r, rz + r, d2, kRun)
                                           : squares(px + r, py + r, pz + r, rx + r, ry + r, rz + r, d2, m);
       if (top <= std::bit_cast<std::uint32_t>(second)) continue;
-      for (std::size_t k = 0; k < m; ++k) add(d2[k]);
+      for (std::size_t k = 0; k < m; ++k) add(d2[k], r + k);
     }
   }
   // The squared displacements of m slots into d2, and their largest bit pattern. Inlined
@@ -188,7 +192,7 @@ double Simulation::time() const {
 // it was built: a pair closes by at most the sum of its two displacements, so the sum
 // of the two largest displacements is checked (less often stale than twice the
 // largest when one particle flies off alone).
-bool Simulation::listIsStale() const {
+bool Simulation::listIsStale() {
   if (!listValid_) return true;
   const ParticleStore& s = state_.particles;
   const Top2 top = tbb::parallel_reduce(
@@ -201,6 +205,7 @@ bool Simulation::listIsStale() const {
         a.join(b);
         return a;
       });
+  fastestSlot_ = top.slot;
   return !(std::sqrt(top.first) + std::sqrt(top.second) < skin_);
 }
 
@@ -210,7 +215,7 @@ void Simulation::computeForces() {
   knownStale_ = -1;
   // A list the displacements call stale may still hold every pair in reach when the
   // particles moved together (solver/list_guard.h).
-  if (rebuild && listValid_ && model_.listGuard && guard_.proves(grid_, s, ref_)) rebuild = false;
+  if (rebuild && listValid_ && model_.listGuard && guard_.proves(grid_, s, ref_, fastestSlot_)) rebuild = false;
   if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the
     // reference positions' memory (they are rewritten below).
@@ -492,6 +497,7 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
         return a;
       });
   knownStale_ = displacement ? (std::sqrt(found.top.first) + std::sqrt(found.top.second) < skin_ ? 0 : 1) : 1;
+  fastestSlot_ = found.top.slot;
   if (check) checkFinite(&found.extremes);
 }
 

@@ -122,7 +122,7 @@ class Simulation {
 
  private:
   void computeForces();            // stages 2-3: grid + pair list when stale, pair forces
-  [[nodiscard]] bool listIsStale() const;
+  [[nodiscard]] bool listIsStale();  // also sets fastestSlot_
   void kick(float h);    // v += (f/m + g) h
   void drift(float dt);  // x += v dt
   void applyWalls();
@@ -185,6 +185,7 @@ class Simulation {
   // The second test of a list the two largest displacements call stale: particles that
   // moved together (solver/list_guard.h).
   ListGuard guard_;
+  std::uint32_t fastestSlot_ = 0;  // the last stale test's largest displacement (a hint)
   // Rigid bodies.
   rigid::RigidSolver rigid_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
