@@ -45,17 +45,18 @@ constexpr std::size_t kRun = 32;
 // a parallel reduction gives the same pair whatever the split.
 struct Top2 {
   float first = 0, second = 0;
-  // A slot whose displacement is the largest (any one of equal ones: a hint for where
-  // ListGuard looks first, which cannot change its answer).
-  std::uint32_t slot = 0;
+  // The lowest slot whose displacement is the largest: the same for any split (each
+  // task meets its slots in ascending order; ties keep the lower slot).
+  std::uint32_t slot = UINT32_MAX;
   void add(float d2, std::size_t i) {
     if (!(d2 == d2)) d2 = INFINITY;
     if (d2 > first) {
       second = first;
       first = d2;
       slot = static_cast<std::uint32_t>(i);
-    } else if (d2 > second) {
-      second = d2;
+    } else {
+      if (d2 == first && i < slot) slot = static_cast<std::uint32_t>(i);
+      if (d2 > second) second = d2;
     }
   }
   void join(const Top2& o) {
@@ -214,8 +215,11 @@ void Simulation::computeForces() {
   bool rebuild = knownStale_ >= 0 ? knownStale_ == 1 : listIsStale();
   knownStale_ = -1;
   // A list the displacements call stale may still hold every pair in reach when the
-  // particles moved together (solver/list_guard.h).
-  if (rebuild && listValid_ && model_.listGuard && guard_.proves(grid_, s, ref_, fastestSlot_)) rebuild = false;
+  // particles moved together (solver/list_guard.h). Asked only when lists die young:
+  // its pass costs about what a tenth of a rebuild does, and a list that lasts many
+  // substeps gains little from one more.
+  if (rebuild && listValid_ && model_.listGuard && listDiesYoung() && guard_.proves(grid_, s, ref_, fastestSlot_))
+    rebuild = false;
   if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the
     // reference positions' memory (they are rewritten below).
@@ -240,6 +244,18 @@ void Simulation::computeForces() {
     ++listBuilds_;
   }
   state_.forcesValid = true;
+}
+
+// Whether a list would last fewer than 8 substeps at the speed of the particle that
+// moved most since the last build (fastestSlot_, found by the stale test): two such
+// particles close by the skin in skin / (2 |v| dt) substeps. A function of the state,
+// so a restored run decides as the uninterrupted one.
+bool Simulation::listDiesYoung() const {
+  const ParticleStore& s = state_.particles;
+  if (fastestSlot_ >= s.size()) return true;
+  const std::size_t i = fastestSlot_;
+  const float v = std::sqrt(s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]);
+  return !(16.0f * v * static_cast<float>(dt()) < skin_);
 }
 
 // The pairs of the list that involve a body particle (the store was just re-sorted).

@@ -123,6 +123,7 @@ class Simulation {
  private:
   void computeForces();            // stages 2-3: grid + pair list when stale, pair forces
   [[nodiscard]] bool listIsStale();  // also sets fastestSlot_
+  [[nodiscard]] bool listDiesYoung() const;
   void kick(float h);    // v += (f/m + g) h
   void drift(float dt);  // x += v dt
   void applyWalls();
@@ -185,7 +186,8 @@ class Simulation {
   // The second test of a list the two largest displacements call stale: particles that
   // moved together (solver/list_guard.h).
   ListGuard guard_;
-  std::uint32_t fastestSlot_ = 0;  // the last stale test's largest displacement (a hint)
+  // The lowest slot with the largest displacement, found by the last stale test.
+  std::uint32_t fastestSlot_ = UINT32_MAX;
   // Rigid bodies.
   rigid::RigidSolver rigid_;
   std::vector<rigid::SlotPair> rigidPairs_;  // listed pairs that involve a body particle
