@@ -87,8 +87,8 @@ void BM_FallingBall(benchmark::State& st) {
     for (int j = -side; j <= side && state.particles.size() < n; ++j)
       for (int k = -side; k <= side && state.particles.size() < n; ++k)
         if (i * i + j * j + k * k <= radius * radius + 1e-9)
-          state.particles.add(static_cast<float>(i), static_cast<float>(1.25 * radius + j), static_cast<float>(k), 0, -2, 0,
-                              0, 0);
+          state.particles.add(static_cast<float>(i), static_cast<float>(1.25 * radius + j),
+                              static_cast<float>(k), 0, -2, 0, 0, 0);
   model.fluids[0].count = static_cast<std::uint32_t>(state.particles.size());
   const double count = static_cast<double>(state.particles.size());
   solver::Simulation sim(model, std::move(state));
@@ -97,7 +97,11 @@ void BM_FallingBall(benchmark::State& st) {
   st.counters["particle-steps/s"] = benchmark::Counter(steps * count, benchmark::Counter::kIsRate);
   st.counters["substeps/list"] = steps / static_cast<double>(std::max<std::int64_t>(1, sim.listBuilds()));
 }
-BENCHMARK(BM_FallingBall)->Args({25000, 0})->Args({25000, 1})->Iterations(36)->Repetitions(3)
+BENCHMARK(BM_FallingBall)
+    ->Args({25000, 0})
+    ->Args({25000, 1})
+    ->Iterations(36)
+    ->Repetitions(3)
     ->Unit(benchmark::kMillisecond);
 
 // A dam of goo flat in z (two lattice layers deep, twice as long in x as high in y)

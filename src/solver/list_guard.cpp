@@ -65,11 +65,13 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   sc.radius.resize(blocks_);
   // Cells come in key order, the major axis most significant: each slab is a run.
   sc.slabCell.assign(dims_[2] + 1, static_cast<std::uint32_t>(nc));
-  for (std::size_t c = nc; c-- > 0;) sc.slabCell[grid.cellFields(c)[2] >> widthShift_] = static_cast<std::uint32_t>(c);
+  for (std::size_t c = nc; c-- > 0;)
+    sc.slabCell[grid.cellFields(c)[2] >> widthShift_] = static_cast<std::uint32_t>(c);
   for (std::size_t k = dims_[2]; k-- > 0;) sc.slabCell[k] = std::min(sc.slabCell[k], sc.slabCell[k + 1]);
 }
 
-bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref, std::size_t hint) {
+bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref,
+                       std::size_t hint) {
   if (!laidOut_) layOut(grid);
   if (blocks_ == 0) return false;
   const std::size_t n = s.size();
@@ -94,7 +96,8 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
   const float margin = skin_ * (1.0f - 1e-5f);
   // Blocks a and b (both holding particles) can have no pair that closed by the skin.
   const auto apart = [&](std::size_t a, std::size_t b) {
-    const float ex = centre(a, 0) - centre(b, 0), ey = centre(a, 1) - centre(b, 1), ez = centre(a, 2) - centre(b, 2);
+    const float ex = centre(a, 0) - centre(b, 0), ey = centre(a, 1) - centre(b, 1),
+                ez = centre(a, 2) - centre(b, 2);
     return radius[a] + radius[b] + std::sqrt(ex * ex + ey * ey + ez * ez) < margin;
   };
   // Block (i0, i1, i2) against its touching blocks at major offset o2 (0: the forward
@@ -186,17 +189,18 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
 
   // 2. The pairs across neighbouring slabs.
   if (d2 > 1)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d2 - 1, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        if (failed.load(std::memory_order_relaxed)) return;
-        for (std::size_t i1 = 0; i1 < d1; ++i1)
-          for (std::size_t i0 = 0; i0 < d0; ++i0)
-            if (!touching(i0, i1, k, 1)) {
-              failed.store(true, std::memory_order_relaxed);
-              return;
-            }
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d2 - 1, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          if (failed.load(std::memory_order_relaxed)) return;
+                          for (std::size_t i1 = 0; i1 < d1; ++i1)
+                            for (std::size_t i0 = 0; i0 < d0; ++i0)
+                              if (!touching(i0, i1, k, 1)) {
+                                failed.store(true, std::memory_order_relaxed);
+                                return;
+                              }
+                        }
+                      });
   if (failed.load()) return false;
 
   // 3. Blocks that do not touch: any two displacements differ by at most the spread of

@@ -216,9 +216,10 @@ void Simulation::computeForces() {
   knownStale_ = -1;
   // A list the displacements call stale may still hold every pair in reach when the
   // particles moved together (solver/list_guard.h). Asked only when lists die young:
-  // its pass costs about what a tenth of a rebuild does, and a list that lasts many
-  // substeps gains little from one more.
-  if (rebuild && listValid_ && model_.listGuard && listDiesYoung() && guard_.proves(grid_, s, ref_, fastestSlot_))
+  // each substep it keeps a list costs a pass over the particles, and a list that
+  // lasts many substeps gains little from one more (docs/architecture.md).
+  if (rebuild && listValid_ && model_.listGuard && listDiesYoung() &&
+      guard_.proves(grid_, s, ref_, fastestSlot_))
     rebuild = false;
   if (rebuild) {
     // Only here is the store re-sorted: the list holds slots. The grid works in the

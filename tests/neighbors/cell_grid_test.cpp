@@ -85,7 +85,8 @@ TEST(CellGrid, CellFieldsAreEachParticlesCellCountedFromTheLowest) {
       previousMajor = k[2];
       for (std::uint32_t i = g.cell(c).begin; i < g.cell(c).end; ++i)
         for (int f = 0; f < 3; ++f)
-          ASSERT_EQ(static_cast<double>(k[f]), std::floor(static_cast<double>((*axis[axes[f]])[i]) / h) - lowest[f])
+          ASSERT_EQ(static_cast<double>(k[f]),
+                    std::floor(static_cast<double>((*axis[axes[f]])[i]) / h) - lowest[f])
               << "cell " << c << " slot " << i << " field " << f;
     }
   }

@@ -46,7 +46,9 @@ struct Built {
       ref[n + i] = store.py[i];
       ref[2 * n + i] = store.pz[i];
     }
-    list.forEachPair([&](std::uint32_t i, std::uint32_t j) { listed.insert({std::min(i, j), std::max(i, j)}); });
+    list.forEachPair([&](std::uint32_t i, std::uint32_t j) {
+      listed.insert({std::min(i, j), std::max(i, j)});
+    });
     guard.hold(kReach, kSkin);
   }
   // Moves every particle to f(reference position, slot).
@@ -65,7 +67,8 @@ struct Built {
     std::size_t count = 0;
     for (std::uint32_t i = 0; i < store.size(); ++i)
       for (std::uint32_t j = i + 1; j < store.size(); ++j) {
-        const float dx = store.px[j] - store.px[i], dy = store.py[j] - store.py[i], dz = store.pz[j] - store.pz[i];
+        const float dx = store.px[j] - store.px[i], dy = store.py[j] - store.py[i],
+                    dz = store.pz[j] - store.pz[i];
         if (dx * dx + dy * dy + dz * dz < kReach * kReach && !listed.count({i, j})) ++count;
       }
     return count;
@@ -93,7 +96,9 @@ std::array<float, 3> turn(const std::array<float, 3>& p, const std::array<float,
 
 TEST(ListGuard, KeepsAListTheWholeCloudWasCarriedAlongByManyCells) {
   Built b(lump(10, 1), linearTable());
-  b.moveTo([](std::array<float, 3> p, std::size_t) { return std::array<float, 3>{p[0] + 7.3f, p[1] - 12.1f, p[2] + 3.7f}; });
+  b.moveTo([](std::array<float, 3> p, std::size_t) {
+    return std::array<float, 3>{p[0] + 7.3f, p[1] - 12.1f, p[2] + 3.7f};
+  });
   EXPECT_TRUE(b.guard.proves(b.grid, b.store, b.ref.data()));
   EXPECT_GT(b.guard.blocks(), 1u);
   EXPECT_EQ(b.missing(), 0u);
@@ -135,11 +140,13 @@ TEST(ListGuard, WheneverItKeepsAListNoPairInReachIsMissing) {
   int kept = 0, refused = 0, incomplete = 0;
   for (std::uint32_t trial = 0; trial < 80; ++trial) {
     // Every third trial a sparse cloud (wider blocks), the others a lump.
-    Built b(trial % 3 == 2 ? scenarios::randomCloud(700, -40, 40, 0, 1, trial) : lump(9, trial), linearTable());
+    Built b(trial % 3 == 2 ? scenarios::randomCloud(700, -40, 40, 0, 1, trial) : lump(9, trial),
+            linearTable());
     std::mt19937 rng(1000 + trial);
     std::uniform_real_distribution<float> u(-1, 1), unit(0, 1);
     const std::array<float, 3> carry{20 * u(rng), 20 * u(rng), 20 * u(rng)};
-    const float angle = 0.02f * unit(rng), stretch = 0.02f * u(rng), jitter = (trial % 2 == 0 ? 0.1f : 1.5f) * kSkin * unit(rng);
+    const float angle = 0.02f * unit(rng), stretch = 0.02f * u(rng),
+                jitter = (trial % 2 == 0 ? 0.1f : 1.5f) * kSkin * unit(rng);
     const bool fling = trial % 5 == 0;
     b.moveTo([&](std::array<float, 3> p, std::size_t i) {
       p = turn(p, {2, 2, 2}, angle);
@@ -151,7 +158,8 @@ TEST(ListGuard, WheneverItKeepsAListNoPairInReachIsMissing) {
     const std::size_t missing = b.missing();
     keeps ? ++kept : ++refused;
     if (missing > 0) ++incomplete;
-    ASSERT_FALSE(keeps && missing > 0) << "trial " << trial << ": kept a list that lacks " << missing << " pairs";
+    ASSERT_FALSE(keeps && missing > 0)
+        << "trial " << trial << ": kept a list that lacks " << missing << " pairs";
   }
   EXPECT_GT(kept, 10);
   EXPECT_GT(refused, 10);
@@ -179,7 +187,8 @@ TEST(ListGuard, BlocksEachMovedAsOneButAgainstTheirNeighboursAreRefused) {
   EXPECT_FALSE(b.guard.proves(b.grid, b.store, b.ref.data()));
   // The same steps a hundredth as long: every pair closed by less than the skin.
   b.moveTo([&](std::array<float, 3> p, std::size_t i) {
-    return std::array<float, 3>{p[0] + 0.01f * step[i][0], p[1] + 0.01f * step[i][1], p[2] + 0.01f * step[i][2]};
+    return std::array<float, 3>{p[0] + 0.01f * step[i][0], p[1] + 0.01f * step[i][1],
+                                p[2] + 0.01f * step[i][2]};
   });
   EXPECT_TRUE(b.guard.proves(b.grid, b.store, b.ref.data()));
 }
@@ -235,7 +244,8 @@ TEST(ListGuard, AFallingTurningLumpKeepsItsListAndItsForcesExact) {
       fluid::referencePairForces(m.table, p, rx, ry, rz);
       double worst = 0, scale = 1;
       for (std::size_t i = 0; i < p.size(); ++i) {
-        worst = std::max(worst, std::abs(p.f[i].x - rx[i]) + std::abs(p.f[i].y - ry[i]) + std::abs(p.f[i].z - rz[i]));
+        worst = std::max(
+            worst, std::abs(p.f[i].x - rx[i]) + std::abs(p.f[i].y - ry[i]) + std::abs(p.f[i].z - rz[i]));
         scale = std::max(scale, std::abs(rx[i]) + std::abs(ry[i]) + std::abs(rz[i]));
       }
       ASSERT_LT(worst, 1e-3 * scale) << "guard " << guard << " step " << k;
