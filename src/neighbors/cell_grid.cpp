@@ -125,6 +125,7 @@ void CellGrid::rebuild(ParticleStore& store, float cellSize, std::span<std::byte
   torus_ = false;
   for (int a = 0; a < 3; ++a) {
     origin_[a] = n > 0 ? span.lo[a] : 0;
+    extent_[a] = n > 0 ? span.hi[a] - span.lo[a] : 0;
     if (n > 0 && span.hi[a] - span.lo[a] >= static_cast<std::int64_t>(kMask)) torus_ = true;
   }
   // Keys in parallel over fixed blocks (each key is written once), first as (z, y, x),

@@ -73,6 +73,12 @@ class CellGrid {
     return {static_cast<std::uint32_t>(key & mask), static_cast<std::uint32_t>((key >> kKeyBits) & mask),
             static_cast<std::uint32_t>((key >> (2 * kKeyBits)) & mask)};
   }
+  /// The largest cellFields() value along each key field (minor, middle, major) that
+  /// the last rebuild's particles span. Exact unless wraps().
+  [[nodiscard]] std::array<std::uint32_t, 3> fieldsMax() const {
+    return {static_cast<std::uint32_t>(extent_[axes_[0]]), static_cast<std::uint32_t>(extent_[axes_[1]]),
+            static_cast<std::uint32_t>(extent_[axes_[2]])};
+  }
   /// Whether the last rebuild's coordinates wrapped (an axis spanning 2^21 - 1 cells or
   /// more): far-apart cells may then share a key.
   [[nodiscard]] bool wraps() const { return torus_; }
@@ -172,6 +178,7 @@ class CellGrid {
   std::vector<std::vector<std::uint32_t>> phases_;
   std::uint64_t hashMask_ = 0;
   std::array<std::int64_t, 3> origin_{};  // the lowest cell coordinates of the last rebuild
+  std::array<std::int64_t, 3> extent_{};  // highest less lowest, per physical axis
   bool torus_ = false;  // some axis spans 2^21 - 1 cells or more: coordinates wrap
   std::array<int, 3> axes_{0, 1, 2};  // physical axis of each key field (minor, middle, major)
   int fixedAxis_ = -1;                // the layers' axis when fixed, else -1

@@ -42,11 +42,7 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   blocks_ = 0;
   const std::size_t nc = grid.cellCount();
   if (nc == 0 || grid.wraps() || !(skin_ > 0) || !std::isfinite(reach_)) return;
-  std::array<std::uint32_t, 3> hi{};
-  for (std::size_t c = 0; c < nc; ++c) {
-    const std::array<std::uint32_t, 3> k = grid.cellFields(c);
-    for (int a = 0; a < 3; ++a) hi[a] = std::max(hi[a], k[a]);
-  }
+  const std::array<std::uint32_t, 3> hi = grid.fieldsMax();
   // Blocks of 2, 4, 8 ... cells a side, until there are no more blocks than cells (a
   // scene spread thin): a wider block is as valid, only less often conclusive.
   widthShift_ = 1;
@@ -63,11 +59,22 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   Scratch& sc = *scratch_;
   sc.box.resize(6 * blocks_);
   sc.radius.resize(blocks_);
-  // Cells come in key order, the major axis most significant: each slab is a run.
-  sc.slabCell.assign(dims_[2] + 1, static_cast<std::uint32_t>(nc));
-  for (std::size_t c = nc; c-- > 0;)
-    sc.slabCell[grid.cellFields(c)[2] >> widthShift_] = static_cast<std::uint32_t>(c);
-  for (std::size_t k = dims_[2]; k-- > 0;) sc.slabCell[k] = std::min(sc.slabCell[k], sc.slabCell[k + 1]);
+  // Cells come in key order, the major axis most significant: each slab is a run, found
+  // by a binary search (no pass over the cells).
+  sc.slabCell.resize(dims_[2] + 1);
+  for (std::size_t k = 0; k <= dims_[2]; ++k) {
+    std::size_t lo = 0, count = nc;  // the first cell of a slab >= k
+    while (count > 0) {
+      const std::size_t step = count / 2;
+      if ((grid.cellFields(lo + step)[2] >> widthShift_) < k) {
+        lo += step + 1;
+        count -= step + 1;
+      } else {
+        count = step;
+      }
+    }
+    sc.slabCell[k] = static_cast<std::uint32_t>(lo);
+  }
 }
 
 bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, const float* ref,
