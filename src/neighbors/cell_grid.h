@@ -64,8 +64,9 @@ class CellGrid {
     return {cellStart_[c], cellStart_[c + 1]};
   }
   /// Cell c's coordinates along the sort key's minor, middle and major axes (keyAxes()),
-  /// counted from the lowest occupied cell of each: floor(position / cellSize()) of its
-  /// particles at the last rebuild, less that of the lowest. Exact unless wraps().
+  /// counted from the lowest occupied cell of each: floor(position * (1 / cellSize()),
+  /// the reciprocal rounded to float) of its particles at the last rebuild, less that
+  /// of the lowest. Exact unless wraps().
   /// Non-decreasing along the major axis in cell order.
   [[nodiscard]] std::array<std::uint32_t, 3> cellFields(std::size_t c) const {
     constexpr std::uint64_t mask = (std::uint64_t{1} << kKeyBits) - 1;

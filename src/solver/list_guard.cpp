@@ -82,6 +82,9 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
   if (!laidOut_) layOut(grid);
   if (blocks_ == 0) return false;
   const std::size_t n = s.size();
+  // The grid must be the list's: its cells reach + skin wide, over this store's slots.
+  const std::size_t nc = grid.cellCount();
+  if (nc == 0 || grid.cell(nc - 1).end != n || grid.cellSize() < reach_ + skin_) return false;
   const float* __restrict px = s.px.data();
   const float* __restrict py = s.py.data();
   const float* __restrict pz = s.pz.data();
@@ -98,21 +101,29 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
     return (static_cast<std::size_t>(k[2] >> w) * d1 + (k[1] >> w)) * d0 + (k[0] >> w);
   };
   const auto centre = [&](std::size_t b, int a) { return 0.5f * (box[6 * b + a] + box[6 * b + 3 + a]); };
-  // Rounding of the sums below is covered by a margin a hundred thousand times smaller
-  // than the skin.
+  // Rounding: the sums below err by a few units in the last place of the skin, covered
+  // by a margin of skin * 1e-5; each displacement x - ref and what is computed from it
+  // errs by a few units in the last place of the displacement itself (large when a lump
+  // has fallen far), covered by 2^-20 of each block's largest |d| (its box's largest
+  // components, summed over the axes, bound |d|).
   const float margin = skin_ * (1.0f - 1e-5f);
+  const auto error = [&](std::size_t b) {
+    float m = 0;
+    for (int a = 0; a < 3; ++a) m += std::max(std::abs(box[6 * b + a]), std::abs(box[6 * b + 3 + a]));
+    return 0x1p-20f * m;
+  };
   // Blocks a and b (both holding particles) can have no pair that closed by the skin.
   const auto apart = [&](std::size_t a, std::size_t b) {
     const float ex = centre(a, 0) - centre(b, 0), ey = centre(a, 1) - centre(b, 1),
                 ez = centre(a, 2) - centre(b, 2);
-    return radius[a] + radius[b] + std::sqrt(ex * ex + ey * ey + ez * ez) < margin;
+    return radius[a] + radius[b] + std::sqrt(ex * ex + ey * ey + ez * ez) < margin - error(a) - error(b);
   };
   // Block (i0, i1, i2) against its touching blocks at major offset o2 (0: the forward
   // ones within the slab, and itself; 1: the nine in the next slab).
   const auto touching = [&](std::size_t i0, std::size_t i1, std::size_t i2, int o2) {
     const std::size_t a = (i2 * d1 + i1) * d0 + i0;
     if (radius[a] < 0) return true;
-    if (o2 == 0 && !(2.0f * radius[a] < margin)) return false;
+    if (o2 == 0 && !(2.0f * radius[a] < margin - 2.0f * error(a))) return false;
     for (int o1 = o2 == 0 ? 0 : -1; o1 <= 1; ++o1)
       for (int o0 = o2 == 0 && o1 == 0 ? 1 : -1; o0 <= 1; ++o0) {
         // Below 0 wraps to a huge value: out of range, as past the end.
@@ -164,8 +175,10 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
       }
       radius[b] = std::max(radius[b], r2);
     }
+    // Empty blocks get -1; an infinite radius (a displacement not finite, even when
+    // the box of that axis stayed empty) stays.
     for (std::size_t b = k * perSlab; b < (k + 1) * perSlab; ++b)
-      radius[b] = box[6 * b] <= box[6 * b + 3] ? std::sqrt(radius[b]) : -1.0f;
+      if (radius[b] != kInf) radius[b] = box[6 * b] <= box[6 * b + 3] ? std::sqrt(radius[b]) : -1.0f;
     for (std::size_t i1 = 0; i1 < d1; ++i1)
       for (std::size_t i0 = 0; i0 < d0; ++i0)
         if (!touching(i0, i1, k, 0)) return false;
@@ -212,7 +225,7 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
 
   // 3. Blocks that do not touch: any two displacements differ by at most the spread of
   // the block centres plus two block radii.
-  float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf}, largest = 0;
+  float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf}, largest = 0, largestError = 0;
   for (std::size_t b = 0; b < blocks_; ++b) {
     if (radius[b] < 0) continue;
     for (int a = 0; a < 3; ++a) {
@@ -220,13 +233,15 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
       hi[a] = std::max(hi[a], centre(b, a));
     }
     largest = std::max(largest, radius[b]);
+    largestError = std::max(largestError, error(b));
   }
   float spread2 = 0;
   for (int a = 0; a < 3; ++a) spread2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
-  return std::sqrt(spread2) + 2.0f * largest < reach_ + margin;
+  return std::sqrt(spread2) + 2.0f * largest < reach_ + margin - 2.0f * largestError;
 }
 
 std::size_t ListGuard::memoryBytes() const {
+  if (!scratch_) return 0;  // moved from
   const Scratch& sc = *scratch_;
   return (sc.box.capacity() + sc.radius.capacity()) * sizeof(float) + sc.slabCell.capacity() * 4;
 }

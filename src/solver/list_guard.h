@@ -55,7 +55,7 @@ class ListGuard {
                             std::size_t hint = SIZE_MAX);
   /// Number of blocks laid out for the current list (0: none yet, or no test; tests).
   [[nodiscard]] std::size_t blocks() const { return blocks_; }
-  /// Bytes held, scratch of every thread included.
+  /// Bytes held.
   [[nodiscard]] std::size_t memoryBytes() const;
 
  private:

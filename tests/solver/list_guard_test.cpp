@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "fluid/pair_forces.h"
 #include "neighbors/cell_grid.h"
 #include "solver/list_guard.h"
@@ -131,6 +133,69 @@ TEST(ListGuard, OneParticleMovedAgainstItsNeighboursByTheSkinMakesItStale) {
     return p;
   });
   EXPECT_FALSE(b.guard.proves(b.grid, b.store, b.ref.data()));
+}
+
+TEST(ListGuard, ANotFiniteDisplacementInABlockOfItsOwnMakesItStale) {
+  // A particle alone in its block, far from the lump: NaN in x leaves that block's x
+  // box empty (min and max skip NaN); it must still count as not finite.
+  for (int axis = 0; axis < 3; ++axis) {
+    ParticleStore s = lump(4, 11);
+    s.add(30, 0, 0, 0, 0, 0, 0, 0);
+    Built b(std::move(s), linearTable());
+    std::size_t lone = 0;
+    for (std::size_t i = 0; i < b.store.size(); ++i)
+      if (b.store.px[i] == 30.0f) lone = i;
+    b.moveTo([&](std::array<float, 3> p, std::size_t i) {
+      if (i == lone) p[static_cast<std::size_t>(axis)] = NAN;
+      return p;
+    });
+    EXPECT_FALSE(b.guard.proves(b.grid, b.store, b.ref.data())) << "axis " << axis;
+    EXPECT_FALSE(b.guard.proves(b.grid, b.store, b.ref.data(), lone)) << "axis " << axis;
+  }
+}
+
+TEST(ListGuard, TheRoundingOfLongDisplacementsIsCovered) {
+  // Two particles 1.1000023 apart (not listed: reach 1 + skin 0.1), both carried about
+  // 64 units past the origin, the second 0.1000025 further: now 0.99999976 apart, in
+  // reach. x - ref rounds to 7.6e-6 there, so the computed closing is below the skin.
+  ParticleStore s;
+  s.add(60.5797462f, 0, 0, 0, 0, 0, 0, 0);
+  s.add(61.6797485f, 0, 0, 0, 0, 0, 0, 0);
+  Built b(std::move(s), linearTable());
+  ASSERT_TRUE(b.listed.empty());
+  b.moveTo([](std::array<float, 3> p, std::size_t) {
+    p[0] = p[0] < 61.0f ? -3.36857057f : -2.3685708f;
+    return p;
+  });
+  ASSERT_EQ(b.missing(), 1u);
+  EXPECT_FALSE(b.guard.proves(b.grid, b.store, b.ref.data()));
+}
+
+TEST(ListGuard, WhereItLooksFirstAndHowManyThreadsRunItChangeNothing) {
+  // The same answer for every hinted slot and on 1, 2 and 3 threads, over motions
+  // that are kept and motions that are refused.
+  int kept = 0, refused = 0;
+  for (std::uint32_t trial = 0; trial < 12; ++trial) {
+    Built b(lump(10, 50 + trial), linearTable());
+    std::mt19937 rng(trial);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const float jitter = 0.05f * kSkin * static_cast<float>(trial);
+    b.moveTo([&](std::array<float, 3> p, std::size_t) {
+      return std::array<float, 3>{p[0] + 5 + jitter * u(rng), p[1] - 3 + jitter * u(rng),
+                                  p[2] + jitter * u(rng)};
+    });
+    const bool expected = b.guard.proves(b.grid, b.store, b.ref.data());
+    expected ? ++kept : ++refused;
+    for (int threads = 1; threads <= 3; ++threads) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(threads));
+      for (std::size_t hint = 0; hint < b.store.size(); hint += 37)
+        ASSERT_EQ(b.guard.proves(b.grid, b.store, b.ref.data(), hint), expected)
+            << "trial " << trial << " threads " << threads << " hint " << hint;
+    }
+  }
+  EXPECT_GT(kept, 2);
+  EXPECT_GT(refused, 2);
 }
 
 TEST(ListGuard, WheneverItKeepsAListNoPairInReachIsMissing) {
