@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <ranges>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -61,19 +62,11 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   sc.radius.resize(blocks_);
   // Cells come in key order, the major axis most significant: each slab is a run, found
   // by a binary search (no pass over the cells).
+  const auto cells = std::views::iota(std::size_t{0}, nc);
   sc.slabCell.resize(dims_[2] + 1);
   for (std::size_t k = 0; k <= dims_[2]; ++k) {
-    std::size_t lo = 0, count = nc;  // the first cell of a slab >= k
-    while (count > 0) {
-      const std::size_t step = count / 2;
-      if ((grid.cellFields(lo + step)[2] >> widthShift_) < k) {
-        lo += step + 1;
-        count -= step + 1;
-      } else {
-        count = step;
-      }
-    }
-    sc.slabCell[k] = static_cast<std::uint32_t>(lo);
+    const auto before = [&](std::size_t c) { return (grid.cellFields(c)[2] >> widthShift_) < k; };
+    sc.slabCell[k] = static_cast<std::uint32_t>(std::ranges::partition_point(cells, before) - cells.begin());
   }
 }
 
@@ -188,12 +181,10 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
   // most likely), alone, then the others in parallel.
   std::size_t first = d2;
   if (hint < n) {
-    std::size_t lo = 0, hi = grid.cellCount();  // the cell that holds the slot
-    while (hi - lo > 1) {
-      const std::size_t mid = (lo + hi) / 2;
-      (grid.cell(mid).begin <= hint ? lo : hi) = mid;
-    }
-    first = grid.cellFields(lo)[2] >> w;
+    const auto cells = std::views::iota(std::size_t{0}, nc);  // the last one starting at or before it
+    const auto holder =
+        std::ranges::partition_point(cells, [&](std::size_t c) { return grid.cell(c).begin <= hint; }) - 1;
+    first = grid.cellFields(*holder)[2] >> w;
     if (!slab(first)) return false;
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d2, 1), [&](const tbb::blocked_range<std::size_t>& r) {
