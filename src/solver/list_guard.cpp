@@ -5,7 +5,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <ranges>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -15,6 +14,24 @@ namespace softsub::solver {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// The first index in [0, n) where `before` is false; `before` holds on a prefix. Not
+// std::ranges::partition_point over std::views::iota: clang 14 (the fuzz build) cannot
+// compile libstdc++ 12's <ranges>.
+template <class Pred>
+std::size_t partitionPoint(std::size_t n, Pred before) {
+  std::size_t lo = 0;
+  while (n > 0) {
+    const std::size_t half = n / 2;
+    if (before(lo + half)) {
+      lo += half + 1;
+      n -= half + 1;
+    } else {
+      n = half;
+    }
+  }
+  return lo;
+}
 
 }  // namespace
 
@@ -62,11 +79,10 @@ void ListGuard::layOut(const neighbors::CellGrid& grid) {
   sc.radius.resize(blocks_);
   // Cells come in key order, the major axis most significant: each slab is a run, found
   // by a binary search (no pass over the cells).
-  const auto cells = std::views::iota(std::size_t{0}, nc);
   sc.slabCell.resize(dims_[2] + 1);
   for (std::size_t k = 0; k <= dims_[2]; ++k) {
     const auto before = [&](std::size_t c) { return (grid.cellFields(c)[2] >> widthShift_) < k; };
-    sc.slabCell[k] = static_cast<std::uint32_t>(std::ranges::partition_point(cells, before) - cells.begin());
+    sc.slabCell[k] = static_cast<std::uint32_t>(partitionPoint(nc, before));
   }
 }
 
@@ -181,10 +197,9 @@ bool ListGuard::proves(const neighbors::CellGrid& grid, const ParticleStore& s, 
   // most likely), alone, then the others in parallel.
   std::size_t first = d2;
   if (hint < n) {
-    const auto cells = std::views::iota(std::size_t{0}, nc);  // the last one starting at or before it
-    const auto holder =
-        std::ranges::partition_point(cells, [&](std::size_t c) { return grid.cell(c).begin <= hint; }) - 1;
-    first = grid.cellFields(*holder)[2] >> w;
+    // The last cell starting at or before it.
+    const std::size_t holder = partitionPoint(nc, [&](std::size_t c) { return grid.cell(c).begin <= hint; }) - 1;
+    first = grid.cellFields(holder)[2] >> w;
     if (!slab(first)) return false;
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, d2, 1), [&](const tbb::blocked_range<std::size_t>& r) {
