@@ -211,7 +211,7 @@ def scan_sim_folder(sim_dir, scene_name=None):
     complete = complete_frames(sim_dir, scene)
     if complete is not None:
         # softsub's manifests say which frames belong to the last run and are whole; a
-        # .sim left by an earlier, longer run (a rerun that was stopped) is not one of them
+        # .sim no manifest lists (an older softsub's rerun left them, or a copy) is not one
         frames = {f: p for f, p in frames.items() if f in complete}
         if not frames:
             raise CacheError(f"'{sim_dir}': no complete frame of '{scene}' (see manifest/)")

@@ -2,7 +2,9 @@
 #include "number_checks.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -25,8 +27,10 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
       "fill", "Fill a mesh with particles (the seed's 'convert to particles'): a PLY point cloud or a <Fluid> block");
   cmd->add_option("MESH", o.mesh, "Mesh file (OBJ, PLY, STL, glTF, FBX)")->required()->check(nonEmptyPath(false));
   cmd->add_option("--spacing", o.spacing, "Lattice step = particle diameter, scene units (> 0)")->required();
-  auto* out = cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this file")
-                   ->check(nonEmptyPath());
+  auto* out =
+      cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this .ply file")
+          ->check(nonEmptyPath())
+          ->check(outputFileWithExtension(".ply", "a PLY point cloud"));
   cmd->add_flag("--scene-snippet", o.sceneSnippet,
                 "Print a <Fluid> block with the particles to paste into a .scene (the default without --out)")
       ->excludes(out);
@@ -82,6 +86,10 @@ int fillCommand(const FillOptions& o) {
   if (!(o.spacing > 0))
     throw InputError({"command line", 0, "--spacing"}, fmt::format("{} is not a valid spacing", o.spacing),
                      "a number > 0");
+  // A PLY mesh and the point cloud's --out may be one file (another spelling, a link).
+  if (std::error_code ec; !o.out.empty() && std::filesystem::equivalent(o.mesh, o.out, ec) && !ec)
+    throw InputError({"command line", 0, "--out"}, fmt::format("'{}' is the mesh being filled", o.out),
+                     "another file: the point cloud would replace the mesh");
   geometry::MeshLoadReport report;
   const geometry::TriangleMesh mesh = geometry::loadMesh(o.mesh, &report);
   if (!o.surface)

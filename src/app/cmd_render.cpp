@@ -176,7 +176,9 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
       ->transform(wholeNumberIn(16, 16384))
       ->capture_default_str();
   cmd->add_option("--frames", o.frames, "Frames to draw: a:b (inclusive), a:, :b or a (default: all)");
-  cmd->add_option("--movie", o.movie, "Also encode the pictures into this MP4 file (needs ffmpeg)");
+  cmd->add_option("--movie", o.movie, "Also encode the pictures into this .mp4 file (needs ffmpeg)")
+      ->check(nonEmptyPath())
+      ->check(outputFileWithExtension(".mp4", "an MP4 movie"));
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps> (1 to 10000, as in a scene)")
       ->transform(wholeNumberIn(1, 10000));
   cmd->add_option("--max-particles", o.maxParticles, "Refuse scenes with more particles than this")

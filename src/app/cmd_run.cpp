@@ -307,7 +307,8 @@ int runCommand(const RunOptions& o) {
 
   // Resuming, the run in the folder is checked (a run with other settings is refused
   // before anything on disk changes) and restored; then a killed run's temporary files
-  // go; starting afresh, the folder's manifests and checkpoints of this scene go too.
+  // go; starting afresh, the folder's manifests, checkpoints and frames of this scene's
+  // earlier run go too.
   ResumePoint resumed;
   if (anyFormat(formats)) {
     if (o.resume) {
@@ -324,7 +325,11 @@ int runCommand(const RunOptions& o) {
     }
     if (resumed.frame >= 0 && chatty)
       fmt::print(stderr, "resuming in {} after frame {}\n", folderText(outDir), resumed.frame);
-    if (resumed.frame < 0) forgetEarlierRun(outDir, loaded.name);
+    if (resumed.frame < 0)
+      if (const std::size_t gone = forgetEarlierRun(outDir, loaded.name, inputFiles(loaded));
+          gone > 0 && chatty)
+        fmt::print(stderr, "note: removed {} frame file(s) of the earlier run of '{}' in {}\n", gone,
+                   loaded.name, folderText(outDir));
   }
 
   // Only a run that writes cache files has a writer: its name rule is for them.

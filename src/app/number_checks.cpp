@@ -1,5 +1,6 @@
 #include "number_checks.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <system_error>
@@ -86,6 +87,21 @@ CLI::Validator nonEmptyPath(bool optional) {
                (optional ? " (leave the option out for its default)" : "");
       },
       "PATH");
+}
+
+CLI::Validator outputFileWithExtension(const std::string& extension, const std::string& kind) {
+  return CLI::Validator(
+      [extension, kind](std::string& value) {
+        std::string tail =
+            value.size() > extension.size() ? value.substr(value.size() - extension.size()) : "";
+        for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (tail == extension && value[value.size() - extension.size() - 1] != '/') return std::string();
+        return fmt::format(
+            "'{}' does not end in {}: the option writes {} there, and a name without "
+            "that ending may be a scene, mesh or frame to keep",
+            value, extension, kind);
+      },
+      "FILE" + extension);
 }
 
 }  // namespace softsub::app

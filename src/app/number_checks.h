@@ -40,4 +40,10 @@ namespace softsub::app {
 /// `optional`: the option has a default, which the error then points to.
 [[nodiscard]] CLI::Validator nonEmptyPath(bool optional = true);
 
+/// A file name ending in `extension` (".mp4", in any case), for an output whose kind the
+/// name promises: `render --movie shot.scene` or `fill --out bunny.obj` wrote an MP4 or
+/// a PLY over the scene or mesh the user meant to keep. `kind`: what is written, in
+/// words ("an MP4 movie").
+[[nodiscard]] CLI::Validator outputFileWithExtension(const std::string& extension, const std::string& kind);
+
 }  // namespace softsub::app

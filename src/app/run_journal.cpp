@@ -1,6 +1,7 @@
 #include "run_journal.h"
 
 #include <algorithm>
+#include <iterator>
 #include <system_error>
 #include <utility>
 
@@ -150,11 +151,42 @@ ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& s
   return point;
 }
 
-void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName) {
-  for (const std::int64_t f : cache::manifestFrames(outDir, sceneName))
-    removeQuietly(cache::manifestPath(outDir, sceneName, f));
+std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
+                             const std::vector<std::filesystem::path>& keep) {
+  namespace fs = std::filesystem;
+  const auto frameFile = [](const fs::path& p) {  // relative, without "..": decodeManifest checked
+    const auto first = p.begin();
+    if (first == p.end()) return false;
+    if (std::next(first) == p.end()) return p.extension() == ".sim";
+    const std::string folder = first->string();
+    return folder == "pdc" || folder == "ply" || folder == "mesh" || folder == "vdb";
+  };
+  std::size_t removed = 0;
+  for (const std::int64_t f : cache::manifestFrames(outDir, sceneName)) {
+    const fs::path path = cache::manifestPath(outDir, sceneName, f);
+    cache::Manifest m;
+    try {
+      m = cache::decodeManifest(cache::readFileBytes(path), path.string());
+    } catch (const std::exception&) {
+      m.files.clear();  // a manifest that does not read names no file
+    }
+    for (const cache::ManifestEntry& e : m.files) {
+      const fs::path file = outDir / e.path;
+      std::error_code ec;
+      if (!frameFile(e.path) || !fs::is_regular_file(file, ec) || fs::file_size(file, ec) != e.bytes || ec)
+        continue;
+      if (std::any_of(keep.begin(), keep.end(), [&](const fs::path& k) {
+            std::error_code kec;
+            return fs::equivalent(k, file, kec) && !kec;
+          }))
+        continue;
+      if (fs::remove(file, ec) && !ec) ++removed;
+    }
+    removeQuietly(path);
+  }
   for (const std::int64_t f : cache::checkpointFrames(outDir, sceneName))
     removeQuietly(cache::checkpointPath(outDir, sceneName, f));
+  return removed;
 }
 
 void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,

@@ -74,8 +74,16 @@ struct ResumePoint {
 void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sceneName);
 
 /// Before a fresh (not resumed) run writes anything: removes the folder's manifests and
-/// checkpoints of `sceneName`, which describe an earlier run.
-void forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName);
+/// checkpoints of `sceneName`, which describe an earlier run, and the frame files those
+/// manifests list (`<scene>.NNNN.sim`, and those in pdc/, ply/, mesh/ and vdb/) that are
+/// still there at the listed size. Without this, an earlier run's frames that this run
+/// does not write again (the PDC ticks of another frame rate, a renamed fluid's files,
+/// frames past this run's end) stayed beside this run's, and Maya or Houdini, which read
+/// a sequence by file name, played the two runs mixed. Kept: what the manifests list
+/// elsewhere (the objects' meshes in `<scene>Geo/`), files of another size (edited
+/// since), and any of `keep` (the scene's input files). Returns how many frame files went.
+std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
+                             const std::vector<std::filesystem::path>& keep);
 
 /// Refuses a run of `sceneName` into `outDir` that would write over another scene's
 /// files there: PDC files, surfaces and VDB grids are named after the fluid, not the

@@ -54,17 +54,20 @@ void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, 
       checkOutputName(obj.name, "Object/Name", loaded.file);
 }
 
-void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
-                     const std::filesystem::path& outDir) {
-  namespace fs = std::filesystem;
-  struct Input {
-    fs::path path;
-    int line;
-    std::string element;  // as the reader names it
-  };
+namespace {
+
+struct InputMesh {
+  std::filesystem::path path;
+  int line;
+  std::string element;  // as the reader names it
+};
+
+// The meshes a scene reads: its objects' and its mesh fills' <Geometry>.
+std::vector<InputMesh> inputMeshes(const LoadedScene& loaded) {
   const scene::SceneDesc& desc = loaded.desc;
-  const fs::path base = desc.baseDir.empty() ? fs::path(".") : fs::path(desc.baseDir);
-  std::vector<Input> inputs;
+  const std::filesystem::path base =
+      desc.baseDir.empty() ? std::filesystem::path(".") : std::filesystem::path(desc.baseDir);
+  std::vector<InputMesh> inputs;
   for (std::size_t k = 0; k < desc.objects.size(); ++k)
     if (const scene::ObjectDesc& o = desc.objects[k]; !o.geometry.empty())
       inputs.push_back({base / o.geometry, o.line, fmt::format("Object[{}]/Geometry", k + 1)});
@@ -73,6 +76,25 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
       if (f.fills[k].shape == scene::FillShape::Mesh)
         inputs.push_back({base / f.fills[k].geometry, f.fills[k].line,
                           fmt::format("Fluid '{}'/Fill[{}]/Geometry", f.name, k + 1)});
+  return inputs;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> inputFiles(const LoadedScene& loaded) {
+  std::vector<std::filesystem::path> files;
+  if (std::error_code ec; !loaded.file.empty() && std::filesystem::is_regular_file(loaded.file, ec))
+    files.emplace_back(loaded.file);
+  for (InputMesh& in : inputMeshes(loaded)) files.push_back(std::move(in.path));
+  return files;
+}
+
+void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
+                     const std::filesystem::path& outDir) {
+  namespace fs = std::filesystem;
+  const scene::SceneDesc& desc = loaded.desc;
+  using Input = InputMesh;
+  const std::vector<Input> inputs = inputMeshes(loaded);
   // Both exist (the input was just read): one file, whatever the paths' spelling.
   const auto same = [](const fs::path& a, const fs::path& b) {
     std::error_code ec;
@@ -86,6 +108,18 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
         "another --out (a run writes each object's mesh to <out>/<scene>Geo/<object>.obj), or the "
         "input mesh moved where the run writes nothing");
   };
+  // The scene file itself, in a folder the run fills with files named by frame: a
+  // scene named like one of them would be replaced (the embedded scene has no file).
+  if (std::error_code ec; !loaded.file.empty() && fs::is_regular_file(loaded.file, ec)) {
+    const fs::path folder =
+        fs::path(loaded.file).parent_path().empty() ? fs::path(".") : fs::path(loaded.file).parent_path();
+    for (const char* sub : {"pdc", "ply", "mesh", "vdb", "manifest", "checkpoint"})
+      if (same(folder, outDir / sub))
+        throw InputError({loaded.file, 0, "scene file"},
+                         fmt::format("the scene is in '{}', a folder this run writes its frames into",
+                                     (outDir / sub).string()),
+                         "another --out, or the scene kept outside the run's output folders");
+  }
   for (const Input& in : inputs) {
     if (formats.sim)
       for (const scene::ObjectDesc& o : desc.objects) {

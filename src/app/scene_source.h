@@ -42,13 +42,19 @@ void checkOutputName(std::string_view name, std::string_view element, const std:
 /// names the scene file.
 void checkOutputNames(const LoadedScene& loaded, const cache::Formats& formats, bool sceneNamesFiles);
 
+/// The files a scene was read from: the scene file (none for the embedded scene), then
+/// every mesh its objects and mesh fills read.
+[[nodiscard]] std::vector<std::filesystem::path> inputFiles(const LoadedScene& loaded);
+
 /// Refuses a run into `outDir` that would write over one of the scene's own input meshes
 /// (an object's or a mesh fill's <Geometry>): the run writes each object's mesh to
 /// `<out>/<scene>Geo/<name>.obj`, where the docs suggest keeping input meshes, so an
 /// --out of the scene's own folder would replace them. Compared by file identity (a link
 /// or another spelling of the path is the same file). Also refused: an input mesh in
 /// one of the run's frame folders (ply/, mesh/) under a name the run's frames take
-/// there. The InputError names the <Object> or <Fill> line. Nothing is created or changed.
+/// there. The InputError names the <Object> or <Fill> line. And refused: the scene file
+/// itself in one of the run's frame folders (pdc/, ply/, mesh/, vdb/, manifest/,
+/// checkpoint/). Nothing is created or changed.
 void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
                      const std::filesystem::path& outDir);
 

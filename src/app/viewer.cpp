@@ -82,6 +82,7 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     // scene, fluids and objects, P screenshots named after the scene.
     checkOutputNames(loaded, formats, true);
     checkInputsKept(loaded, formats, outDir);
+    inputFiles_ = inputFiles(loaded);
     session_ = std::make_unique<session::LiveSession>(loaded.desc, loaded.name, outDir, formats);
     if (options.stopRecordingAt >= 0) session_->setStopRecordingAt(options.stopRecordingAt);
     renderScene_ = renderSceneOf(session_->desc(), session_->objectMeshes());
@@ -242,10 +243,12 @@ void Viewer::writeCaches() {
     return;
   }
   try {
-    // These frames are not a `run`'s: the journal (manifests, checkpoints) an earlier run
-    // of this scene left in the folder goes first, as when `run` starts afresh, so that
-    // `run --resume` and `info` cannot take the viewer's frames for that run's.
-    if (session_->recordedFrames() > 0) forgetEarlierRun(session_->outputDir(), session_->sceneName());
+    // These frames are not a `run`'s: the journal (manifests, checkpoints) and the frames
+    // an earlier run of this scene left in the folder go first, as when `run` starts
+    // afresh, so that `run --resume` and `info` cannot take the viewer's frames for that
+    // run's, nor a package mix the two.
+    if (session_->recordedFrames() > 0)
+      forgetEarlierRun(session_->outputDir(), session_->sceneName(), inputFiles_);
     const auto written = session_->writeRecorded();
     if (written.frames == 0) {
       setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames"

@@ -80,6 +80,7 @@ class Viewer {
   std::size_t playIndex_ = 0;
   FrameSnapshot playFrame_;
   std::string sceneName_;
+  std::vector<std::filesystem::path> inputFiles_;  // the live scene's, kept when S replaces a run
 
   bool paused_ = false;
   bool stepOnce_ = false;

@@ -70,6 +70,28 @@ TEST(FillCommand, BadInputExitsTwoMissingFileThree) {
   EXPECT_EQ(listEntries(tmp.path()), (std::vector<std::string>{"box.obj", "junk.obj"}));
 }
 
+// --out replaced the mesh being filled with the point cloud (exit 0) when the user
+// named it after the mesh; only a .ply name that is not the mesh itself is written.
+TEST(FillCommand, TheOutputNeverReplacesTheMesh) {
+  TempDir tmp;
+  writeBoxObj(tmp / "box.obj", 2.0);
+  const std::string obj = readFile(tmp / "box.obj");
+  const RunResult notPly = runSoftsub("fill box.obj --spacing 0.5 --out box.obj", tmp.path());
+  EXPECT_EQ(notPly.code, 2) << notPly.err;
+  EXPECT_NE(notPly.err.find("does not end in .ply"), std::string::npos) << notPly.err;
+  EXPECT_EQ(readFile(tmp / "box.obj"), obj);
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n2 0 0\n0 2 0\n0 0 2\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(tmp / "tet.ply") << ply;
+  ASSERT_EQ(runSoftsub("fill tet.ply --spacing 0.25 --out cloud.PLY -q", tmp.path()).code, 0);
+  const RunResult same = runSoftsub("fill tet.ply --spacing 0.25 --out ./tet.ply", tmp.path());
+  EXPECT_EQ(same.code, 2) << same.err;
+  EXPECT_NE(same.err.find("is the mesh being filled"), std::string::npos) << same.err;
+  EXPECT_EQ(readFile(tmp / "tet.ply"), ply);
+}
+
 // --name went into the snippet unescaped and unchecked (`<Name><x>&</Name>`, a broken
 // scene); it now follows the reader's rule for fluid names in both modes, checked first.
 TEST(FillCommand, NamesFollowTheScenesFluidNameRule) {

@@ -380,6 +380,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Refusal{"RangePastTheEnd", "--frames 100:120", "--frames"},
                       Refusal{"MovieOddWidth", "--width 321 --height 200 --movie m.mp4", "--movie"},
                       Refusal{"MovieOddHeight", "--width 320 --height 201 --movie m.mp4", "--movie"},
+                      // It replaced the scene with an MP4, exit 0.
+                      Refusal{"MovieOverTheScene", "--movie two-fluids.scene", "--movie"},
+                      Refusal{"MovieNotMp4", "--movie clip.mov", "--movie"},
                       Refusal{"VoxelWithoutSurface", "--voxel-size 0.1", "--voxel-size"},
                       Refusal{"VoxelTooSmall", "--surface --voxel-size 1e-6", "--voxel-size"},
                       // 100000 was accepted while run, view and the schema stop at 10000.

@@ -470,5 +470,51 @@ TEST(Run, ASecondSceneNeverWritesOverAnotherScenesFluidFiles) {
       << "a scene rewrites its own";
 }
 
+// A fresh run into a folder that holds an earlier run of the same scene: the earlier
+// run's frames go with its manifests, so another frame rate's PDC ticks, a renamed
+// fluid's files or frames past this run's end never mix with this run's (Maya and
+// Houdini read a sequence by file name). Files the earlier manifests do not list, or
+// list at another size (edited since), stay; --resume keeps everything.
+TEST(Run, AFreshRunRemovesTheEarlierRunsFramesOnly) {
+  TempDir tmp;
+  const std::string scene =
+      "<Scene version=\"1\"><Simulation><FramesPerSecond>{}</FramesPerSecond></Simulation><Environment/>\n"
+      "<Fluid><Name>{}</Name><Particles>0 8 0  1 8 0</Particles></Fluid></Scene>\n";
+  std::ofstream(tmp / "shot.scene") << fmt::format(fmt::runtime(scene), 24, "goo");
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 3 --out o", tmp.path()).code, 0);
+  ASSERT_TRUE(fs::exists(tmp / "o/pdc/gooShape.750.pdc"));
+  std::ofstream(tmp / "o/pdc/notes.txt") << "the artist's";
+  std::ofstream(tmp / "o/ply/shot.0003.ply", std::ios::app) << "edited";  // another size now
+  // 30 frames a second, a renamed fluid, fewer frames.
+  std::ofstream(tmp / "shot.scene") << fmt::format(fmt::runtime(scene), 30, "jam");
+  const RunResult r = runSoftsub("run -q shot.scene --frames 1 --out o", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(listFiles(tmp / "o/pdc"),
+            (std::vector<std::string>{"jamShape.0.pdc", "jamShape.200.pdc", "notes.txt"}));
+  EXPECT_EQ(listFiles(tmp / "o/ply"),
+            (std::vector<std::string>{"shot.0000.ply", "shot.0001.ply", "shot.0003.ply"}));
+  EXPECT_FALSE(fs::exists(tmp / "o/shot.0002.sim"));
+  EXPECT_FALSE(fs::exists(tmp / "o/shot.0003.sim"));
+  EXPECT_EQ(readFile(tmp / "o/pdc/notes.txt"), "the artist's");
+  // Resuming keeps the run's frames.
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 2 --out o --resume", tmp.path()).code, 0);
+  EXPECT_TRUE(fs::exists(tmp / "o/shot.0001.sim"));
+  EXPECT_TRUE(fs::exists(tmp / "o/pdc/jamShape.400.pdc"));
+}
+
+// A scene kept in one of the run's frame folders could be named like a frame there.
+TEST(Run, ASceneInsideTheRunsFrameFoldersIsRefused) {
+  TempDir tmp;
+  fs::create_directories(tmp / "o/pdc");
+  const std::string text =
+      "<Scene version=\"1\"><Environment/><Fluid><Name>w</Name><Particles>0 8 "
+      "0</Particles></Fluid></Scene>\n";
+  std::ofstream(tmp / "o/pdc/wShape.0.pdc") << text;
+  const RunResult r = runSoftsub("run o/pdc/wShape.0.pdc --frames 1 --out o", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("a folder this run writes its frames into"), std::string::npos) << r.err;
+  EXPECT_EQ(readFile(tmp / "o/pdc/wShape.0.pdc"), text);
+}
+
 }  // namespace
 }  // namespace softsub::apptest

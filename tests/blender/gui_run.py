@@ -165,8 +165,8 @@ def tick():
         scan = caches.scan_sim_folder(os.path.join(work, "guiSim"))
         last = scan["frames"][-1]
         check(3 <= last < 2000 and last == s.run_frame, f"the stopped run wrote frames 0..{last}, said {s.run_frame}")
-        if last < 36:  # the first run's later frames are still there, and not imported
-            check(os.path.exists(os.path.join(work, "guiSim", f"gui.{last + 1:04d}.sim")), "no stale frame")
+        if last < 36:  # the fresh run removed the first run's later frames
+            check(not os.path.exists(os.path.join(work, "guiSim", f"gui.{last + 1:04d}.sim")), "a stale frame")
         goo_sim = bpy.data.objects.get("goo_sim")
         check(goo_sim is not None and goo_sim.softsub_cache.last_frame == last,
               "the complete frames of the stopped run were not imported")
