@@ -251,6 +251,16 @@ int runCommand(const RunOptions& o) {
   }
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
+  // Maya reads a PDC file's time from its name in 32-bit ticks (6000 a second).
+  if (formats.pdc && cache::pdcTicks(lastFrame, loaded.desc.simulation.framesPerSecond) >
+                         std::numeric_limits<std::int32_t>::max())
+    throw InputError({sceneFile, 0, "Simulation"},
+                     fmt::format("frame {} at {} frames a second is {} ticks into the PDC cache, past the "
+                                 "2147483647 that Maya's 32-bit ticks hold",
+                                 lastFrame, loaded.desc.simulation.framesPerSecond,
+                                 cache::pdcTicks(lastFrame, loaded.desc.simulation.framesPerSecond)),
+                     "fewer Frames or more FramesPerSecond (at most 357913 seconds of animation), or "
+                     "--formats without pdc");
 
   scene::Compiled compiled = scene::compile(loaded.desc);
   compiled.model.adaptiveSubsteps = o.adaptive;

@@ -26,6 +26,15 @@ bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 // problem filled in at the first bad one.
 bool checkCharacters(std::string_view text, XmlTextCheck& out) {
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  // A UTF-16 file (what some Windows editors save) begins with its byte order mark, or
+  // with '<' as two bytes: name the encoding rather than its first byte.
+  if (text.size() >= 2 && ((byte(0) == 0xFF && byte(1) == 0xFE) || (byte(0) == 0xFE && byte(1) == 0xFF) ||
+                           (byte(0) == '<' && byte(1) == 0) || (byte(0) == 0 && byte(1) == '<'))) {
+    out.offset = 0;
+    out.problem = "the file is UTF-16 text";
+    out.allowed = "UTF-8 text: save the file as UTF-8 (every editor can)";
+    return false;
+  }
   std::size_t i = 0;
   while (i < text.size()) {
     const unsigned char b = byte(i);

@@ -516,5 +516,21 @@ TEST(Run, ASceneInsideTheRunsFrameFoldersIsRefused) {
   EXPECT_EQ(readFile(tmp / "o/pdc/wShape.0.pdc"), text);
 }
 
+// Maya's PDC ticks are 32-bit: a run whose last PDC file would be named past them is
+// refused before anything is written; without PDC files it runs.
+TEST(Run, PdcTicksPastMayasThirtyTwoBitsAreRefused) {
+  TempDir tmp;
+  std::ofstream(tmp / "slow.scene")
+      << "<Scene version=\"1\"><Simulation><FramesPerSecond>0.001</FramesPerSecond><Frames>400</Frames>"
+         "</Simulation><Environment/><Fluid><Name>w</Name><Particles>0 8 0</Particles></Fluid></Scene>\n";
+  const RunResult r = runSoftsub("run slow.scene --out o", tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("2400000000 ticks"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+  EXPECT_EQ(runSoftsub("run -q slow.scene --out o --frames 357", tmp.path()).code, 0);  // 357,000,000 ticks
+  const RunResult simOnly = runSoftsub("run -q slow.scene --out s --formats sim --frames 400", tmp.path());
+  EXPECT_EQ(simOnly.code, 0) << simOnly.err;
+}
+
 }  // namespace
 }  // namespace softsub::apptest

@@ -120,6 +120,10 @@ inline std::vector<Row> rows() {
        "a control character U+0001", "no control character but tab"},
       {"InvalidUtf8", F("<Viscosity>1\xFF</Viscosity><!--E-->"), "XML", "invalid UTF-8 (byte 0xFF)",
        "UTF-8 text"},
+      // Saved as UTF-16 (with and without a byte order mark): "invalid UTF-8 (byte 0xFF)".
+      {"Utf16WithByteOrderMark", std::string("\xFF\xFE", 2) + "<!--E-->", "XML", "the file is UTF-16 text",
+       "save the file as UTF-8"},
+      {"Utf16BigEndianWithoutMark", std::string("\0<", 2) + "<!--E-->", "XML", "the file is UTF-16 text", ""},
       {"Utf16Surrogate", F("<Viscosity>1\xED\xA0\x80</Viscosity><!--E-->"), "XML",
        "invalid UTF-8 (byte 0xED)", ""},
       {"NonCharacterFFFF", F("<Viscosity>1\xEF\xBF\xBF</Viscosity><!--E-->"), "XML",
