@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace softsub::forces {
 
@@ -33,6 +35,21 @@ SampledFunction sample(const PairFunction& f, int intervals) {
     v0 = v1;
   }
   return s;
+}
+
+int intervalsFor(const PairFunction& f, int intervals) {
+  const int n = std::max(intervals, 1);
+  const double rc = cutoff(f);
+  double length = 0;  // the function's own length scale; 0: none (a straight line)
+  if (const auto* lj = std::get_if<LennardJones>(&f)) length = lj->finiteDistance;
+  if (const auto* ljf = std::get_if<LennardJonesForce>(&f)) length = ljf->sigma;
+  if (const auto* c = std::get_if<Curve>(&f))
+    for (std::size_t k = 2; k + 1 < c->points.size(); k += 2)
+      if (const double gap = c->points[k] - c->points[k - 2]; gap > 0 && (length == 0 || gap < length))
+        length = gap;
+  if (!(length > 0) || !(rc > 2 * length)) return n;
+  const double wanted = std::ceil(0.5 * n * rc / length);
+  return wanted >= kMaxIntervals ? std::max(n, kMaxIntervals) : std::max(n, static_cast<int>(wanted));
 }
 
 namespace {
@@ -72,26 +89,36 @@ InteractionTable::InteractionTable(std::size_t materials, int intervals)
   // so that the branch-free kernel may read an entry's table whatever the distance.
 }
 
-std::uint32_t InteractionTable::addSamples(const PairFunction& f, double* cutoffOut) {
+std::uint32_t InteractionTable::addSamples(const PairFunction& f, double* cutoffOut, int* intervalsOut) {
   *cutoffOut = cutoff(f);
-  for (const auto& [fn, offset] : sampledFunctions_)
-    if (fn == f) return offset;
-  const SampledFunction s = sample(f, intervals_);
+  for (const Sampled& s : sampledFunctions_)
+    if (s.function == f) {
+      *intervalsOut = s.intervals;
+      return s.offset;
+    }
+  const int n = intervalsFor(f, intervals_);
+  if (samples_.size() + 2 * static_cast<std::size_t>(n) > kMaxTableFloats)
+    throw std::length_error(
+        std::to_string(sampledFunctions_.size() + 1) + " distinct pair functions need more than the " +
+        std::to_string(kMaxTableFloats * sizeof(float) >> 20) + " MiB the interaction table may hold");
+  const SampledFunction s = sample(f, n);
   const auto offset = static_cast<std::uint32_t>(samples_.size());
   samples_.insert(samples_.end(), s.pieces.begin(), s.pieces.end());
-  sampledFunctions_.emplace_back(f, offset);
+  sampledFunctions_.push_back({f, offset, n});
+  *intervalsOut = n;
   return offset;
 }
 
 void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) {
   double rc = 0;
+  int n = 0;
   PairEntry e;
-  e.offset = addSamples(in.function, &rc);
+  e.offset = addSamples(in.function, &rc, &n);
   e.cutoff2 = static_cast<float>(rc * rc);
-  e.invDr = rc > 0 ? static_cast<float>(intervals_ / rc) : 0.0f;
+  e.invDr = rc > 0 ? static_cast<float>(n / rc) : 0.0f;
   e.damping = static_cast<float>(in.damping);
   e.relativeVelocity = static_cast<float>(in.relativeVelocity);
-  e.lastPiece = static_cast<std::uint32_t>(intervals_ - 1);
+  e.lastPiece = static_cast<std::uint32_t>(n - 1);
   // Count the entries with a velocity term as they are replaced (O(1) per set()).
   const auto moving = [](const PairEntry& p) { return p.damping != 0 || p.relativeVelocity != 0; };
   for (const std::size_t k : {a * materials_ + b, b * materials_ + a}) {

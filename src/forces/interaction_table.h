@@ -31,6 +31,20 @@ struct SampledFunction {
 /// from below, so a function with a jump at its cutoff keeps its value up to it.
 SampledFunction sample(const PairFunction& f, int intervals = kDefaultIntervals);
 
+/// The most pieces one function is sampled into (2 MiB of table).
+inline constexpr int kMaxIntervals = 1 << 18;
+/// The most floats a whole table holds (256 MiB): a scene of many fluids, each pair with
+/// its own <Pair> function, is refused rather than left to run out of memory.
+inline constexpr std::size_t kMaxTableFloats = std::size_t{1} << 26;
+
+/// The pieces the table samples f into: `intervals`, or more when f's own length scale
+/// (FiniteDistance, sigma, the closest two points of a Curve) is under half its cutoff,
+/// so that it gets at least intervals / 2 pieces per length scale, up to kMaxIntervals.
+/// Why: a long-range cohesion (InteractionDistance 200 x FiniteDistance) had its 12-6
+/// core in 10 pieces and felt a force of 11 where the formula gives 0. Scenes whose
+/// cutoffs are at most twice their length scales (every example) are sampled as before.
+[[nodiscard]] int intervalsFor(const PairFunction& f, int intervals = kDefaultIntervals);
+
 /// One table entry: what the pair kernel needs for a (material a, material b) pair.
 /// Hot, small and plain; precomputed constants only.
 struct PairEntry {
@@ -111,7 +125,7 @@ class InteractionTable {
   [[nodiscard]] double sampledAt(std::size_t a, std::size_t b, double r) const;
 
  private:
-  std::uint32_t addSamples(const PairFunction& f, double* cutoffOut);
+  std::uint32_t addSamples(const PairFunction& f, double* cutoffOut, int* intervalsOut);
 
   std::size_t materials_ = 0;
   int intervals_ = kDefaultIntervals;
@@ -122,7 +136,12 @@ class InteractionTable {
   std::size_t relativeEntries_ = 0;  // entries with a relative-velocity term
   std::vector<float> rowCutoff2_;
   std::optional<ClosedFormLj> closedForm_;  // see closedFormLj()
-  std::vector<std::pair<PairFunction, std::uint32_t>> sampledFunctions_;  // dedupe
+  struct Sampled {
+    PairFunction function;
+    std::uint32_t offset;
+    int intervals;
+  };
+  std::vector<Sampled> sampledFunctions_;  // dedupe
 };
 
 }  // namespace softsub::forces

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -174,12 +175,16 @@ Compiled compile(const SceneDesc& desc) {
     const FluidDesc& fa = desc.fluids[a];
     for (std::size_t b = a; b < nf; ++b) {
       const FluidDesc& fb = desc.fluids[b];
-      if (const PairDesc* p = findPair(desc.interactions, fa.name, fb.name))
-        m.table.set(a, b, toInteraction(p->interaction));
-      else if (a == b)
-        m.table.set(a, a, {fluid::ownFunction(fa.params), fa.params.viscosity, 0});
-      else
-        m.table.set(a, b, toInteraction(desc.interactions.fluidFluid));
+      const PairDesc* p = findPair(desc.interactions, fa.name, fb.name);
+      try {
+        if (p) m.table.set(a, b, toInteraction(p->interaction));
+        else if (a == b) m.table.set(a, a, {fluid::ownFunction(fa.params), fa.params.viscosity, 0});
+        else m.table.set(a, b, toInteraction(desc.interactions.fluidFluid));
+      } catch (const std::length_error& e) {  // the table's size cap (forces::kMaxTableFloats)
+        throw InputError({desc.file, p ? p->line : fa.line, p ? "Interactions/Pair" : "Fluid"}, e.what(),
+                         "fewer distinct pair functions (pairs with the same function share one table), "
+                         "or shorter cutoffs relative to FiniteDistance");
+      }
     }
   }
 

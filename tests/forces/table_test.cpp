@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "forces/interaction_table.h"
 
@@ -128,4 +129,43 @@ TEST(InteractionTable, PairsThatDoNothingPointAtAZeroPiece) {
 }
 
 }  // namespace
+// A cutoff far beyond the function's own length scale: the 12-6 core used to fall in a
+// few of the 2048 pieces (a force of 11 at r = FiniteDistance, where the formula gives
+// 0). Now each length scale gets at least half the default's pieces; cutoffs up to twice
+// the length scale (every example) keep exactly the default table.
+TEST(InteractionTable, LongCutoffsGetPiecesEnoughForTheirLengthScale) {
+  EXPECT_EQ(intervalsFor(LennardJones{20, 1, -20, 400, 1.5}), kDefaultIntervals);
+  EXPECT_EQ(intervalsFor(LennardJones{20, 1, -20, 400, 2}), kDefaultIntervals);
+  EXPECT_EQ(intervalsFor(LennardJonesForce{1, 1, 2.5}), 2560);
+  EXPECT_EQ(intervalsFor(LennardJones{20, 1, -20, 400, 200}), 1024 * 200);
+  EXPECT_EQ(intervalsFor(LennardJones{20, 1, -20, 400, 1000}), kMaxIntervals);
+  EXPECT_EQ(intervalsFor(Linear{5, 100, 0, 5}), kDefaultIntervals) << "a line is sampled exactly";
+  EXPECT_EQ(intervalsFor(Curve{{0, 5, 0.1, 1, 10, 0}}), 1024 * 100) << "its closest points set its scale";
+  EXPECT_EQ(intervalsFor(LennardJones{20, 1, -20, 400, 200}, 64), 32 * 200) << "scales with the base count";
+
+  for (const double rc : {50.0, 200.0}) {
+    const LennardJones f{20, 1, -20, 400, rc};
+    InteractionTable t(1);
+    t.set(0, 0, {f, 0, 0});
+    EXPECT_EQ(std::size_t{t.entry(0, 0).lastPiece} + 1, static_cast<std::size_t>(intervalsFor(f)));
+    double err = 0;
+    for (double r = 0.9; r < 3; r += 1e-4)
+      err = std::max(err, std::abs(t.sampledAt(0, 0, r) - evaluate(f, r)));
+    EXPECT_LT(err, 1e-3 * 20) << "cutoff " << rc << ": within 1e-3 of the clamp";
+  }
+}
+
+// Distinct functions each take their own samples; past kMaxTableFloats the table
+// refuses (the scene compiler names the scene's line) instead of exhausting memory.
+TEST(InteractionTable, AFunctionPastTheTablesSizeCapIsRefused) {
+  const std::size_t each = 2 * static_cast<std::size_t>(kMaxIntervals);
+  const std::size_t fit = (kMaxTableFloats - 2) / each;
+  InteractionTable t(fit + 1);
+  for (std::size_t a = 0; a < fit; ++a)
+    t.set(a, a, {LennardJones{1.0 + static_cast<double>(a), 1, -20, 400, 600}, 0, 0});
+  EXPECT_EQ(t.samples().size(), 2 + fit * each);
+  t.set(fit, fit, {LennardJones{1, 1, -20, 400, 600}, 0, 0});  // shares the first's samples
+  EXPECT_THROW(t.set(fit, fit, {LennardJones{0.5, 1, -20, 400, 600}, 0, 0}), std::length_error);
+}
+
 }  // namespace softsub::forces

@@ -12,6 +12,8 @@
 #include <locale>
 #include <string>
 
+#include "forces/interaction_table.h"
+#include "scene/compile.h"
 #include "scene/reader.h"
 #include "scene_test_util.h"
 
@@ -140,4 +142,31 @@ TEST(InputLimits, AVolumeFillOfAnOpenMeshWarnsWithFileAndLine) {
 }
 
 }  // namespace
+// The interaction table's size is capped (forces::kMaxTableFloats): a scene whose
+// distinct pair functions would pass it is refused naming the fluid (or <Pair>) whose
+// function does not fit, instead of running out of memory (300 fluids with their own
+// <Pair> functions took 1.1 GB; the 1024-fluid limit allowed about 12 GB).
+TEST(InputLimits, AnInteractionTablePastItsCapIsRefusedNamingTheLine) {
+  std::string body;
+  const int fluids = 129;  // each 2 MiB of table (cutoff 600 x FiniteDistance): 258 MiB
+  for (int k = 0; k < fluids; ++k)
+    body += "<Fluid><Name>f" + std::to_string(k) + "</Name><Amplitude>" + std::to_string(1 + k) +
+            "</Amplitude><InteractionDistance>600</InteractionDistance><FiniteDistance>1</FiniteDistance>"
+            "<Particles>" +
+            std::to_string(k) + " 0 0</Particles></Fluid>\n";
+  const SceneDesc desc = readSceneText(testing::sceneWith(body), "t.scene");
+  try {
+    (void)compile(desc);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "t.scene");
+    // 127 tables of 2^19 floats fit beside the zero piece; fluid f127, on line 2 + 127, does not.
+    const auto fit =
+        static_cast<int>((forces::kMaxTableFloats - 2) / (2 * std::size_t{forces::kMaxIntervals}));
+    EXPECT_EQ(e.where().line, 2 + fit) << e.what();
+    EXPECT_NE(std::string(e.what()).find("distinct pair functions need more than"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace softsub::scene
