@@ -89,9 +89,11 @@ class Context {
   Context(std::string_view text, std::string file, std::filesystem::path base,
           const ReadOptions& readOptions)
       : options(readOptions), baseDir(std::move(base)), file_(std::move(file)) {
+    // A line ends at LF, CR LF, or a CR alone (old Mac files), as XML reads them.
     lineStarts_.push_back(0);
     for (std::size_t i = 0; i < text.size(); ++i) {
-      if (text[i] == '\n') lineStarts_.push_back(i + 1);
+      if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')))
+        lineStarts_.push_back(i + 1);
     }
   }
 

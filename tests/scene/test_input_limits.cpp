@@ -59,6 +59,16 @@ TEST(InputLimits, AHugeFileIsRefusedBeforeItIsRead) {
   EXPECT_NE(e.allowed().find("at most 1 GiB"), std::string::npos) << e.what();
 }
 
+// Old Mac files end lines with a CR alone: every error was reported at line 1.
+TEST(InputLimits, ErrorsCountLinesEndedByLfCrLfOrALoneCr) {
+  for (const std::string eol : {"\n", "\r\n", "\r"}) {
+    const std::string text = "<?xml version=\"1.0\"?>" + eol + "<Scene version=\"1\">" + eol + "<Fluid>" +
+                             eol + "<Name>w</Name>" + eol + "<Viscosity>-1</Viscosity>" + eol +
+                             "<Particles>0 0 0</Particles></Fluid>" + eol + "</Scene>" + eol;
+    EXPECT_EQ(testing::readError(text).where().line, 5) << static_cast<int>(eol.back());
+  }
+}
+
 TEST(InputLimits, AByteOrderMarkIsFine) {
   const SceneDesc d = readSceneText("\xEF\xBB\xBF" + kScene, "t.scene");
   ASSERT_EQ(d.fluids.size(), 1U);
