@@ -11,9 +11,10 @@
 #include "core/error.h"
 #include "number_checks.h"
 #include "progress.h"
-#include "surface_options.h"
+#include "run_journal.h"
 #include "session/playback.h"
 #include "surface/surface_writer.h"
+#include "surface_options.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -67,6 +68,7 @@ int meshCommand(const MeshOptions& o) {
       progress.emplace(chatty, lastFrame, particles);
     }
     writer.onFrame(frame);
+    updateFrameManifest(playback.folder(), playback.sceneName(), frame.frame, writer.lastWritten());
     solver::FrameProgress p;
     p.frame = frame.frame;
     p.lastFrame = lastFrame;

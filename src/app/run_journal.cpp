@@ -189,6 +189,26 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
   return removed;
 }
 
+void updateFrameManifest(const std::filesystem::path& outDir, const std::string& sceneName,
+                         std::int64_t frame, const std::vector<std::filesystem::path>& files) {
+  const std::filesystem::path path = cache::manifestPath(outDir, sceneName, frame);
+  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec)) return;
+  cache::Manifest m;
+  try {
+    m = cache::decodeManifest(cache::readFileBytes(path), path.string());
+  } catch (const std::exception&) {
+    return;
+  }
+  for (const std::filesystem::path& file : files) {
+    const cache::ManifestEntry now = cache::entryOf(outDir, file);
+    const auto it = std::find_if(m.files.begin(), m.files.end(),
+                                 [&](const cache::ManifestEntry& e) { return e.path == now.path; });
+    if (it != m.files.end()) it->bytes = now.bytes;
+    else m.files.push_back(now);
+  }
+  cache::writeFileAtomic(path, cache::encodeManifest(m));
+}
+
 void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
                             const cache::Formats& formats, const std::vector<std::string>& fluidNames) {
   if (!formats.pdc && !formats.mesh && !formats.vdb) return;

@@ -85,6 +85,15 @@ void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sc
 std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
                              const std::vector<std::filesystem::path>& keep);
 
+/// After a command rewrote files of a run's frame (`mesh`: its surfaces at other
+/// settings), brings that frame's manifest up to date: each of `files` (inside
+/// `outDir`) listed at its new size, or added. Without it the frame read as incomplete
+/// (a listed file of another size), so `info`, `render`, the Blender add-on and
+/// `--resume` took the run for one that had stopped at frame 0, and a resume wrote the
+/// old surfaces back. Nothing happens when the frame has no manifest or it does not read.
+void updateFrameManifest(const std::filesystem::path& outDir, const std::string& sceneName,
+                         std::int64_t frame, const std::vector<std::filesystem::path>& files);
+
 /// Refuses a run of `sceneName` into `outDir` that would write over another scene's
 /// files there: PDC files, surfaces and VDB grids are named after the fluid, not the
 /// scene, so two scenes with a fluid of the same name in one folder replaced each

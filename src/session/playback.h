@@ -26,9 +26,9 @@ class Playback {
   /// OBJ files the first frame names. InputError when there is no frame (saying what is
   /// expected) or a frame or mesh is invalid; IoError when something cannot be read.
   /// When the scene has frame manifests (`manifest/`, written by every run), frames
-  /// past the last one are left out: a fresh run into a folder keeps the later frames
-  /// of an earlier, longer run (it never deletes cache files) but removes its manifests,
-  /// so those frames are not the last run's (notes() says which).
+  /// past the last one are left out: frames no manifest lists (an older softsub's rerun
+  /// left them; a fresh run now removes what the earlier run's manifests list) are not
+  /// the last run's (notes() says which).
   explicit Playback(const std::filesystem::path& path);
 
   /// Number of frames.

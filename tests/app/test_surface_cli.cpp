@@ -255,6 +255,32 @@ TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
   EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "b/honey-dropSim/vdb/honey.0002.vdb").voxelSize(), 0.5, 1e-9);
 }
 
+// `mesh` rewrote surfaces the run's manifests list, at other sizes, and left the
+// manifests as they were: `info` then found no complete frame, and `run --resume`
+// started over, writing the old surfaces back. The manifests follow the new files, and
+// a fresh run removes what `mesh` added, with the rest of the earlier run.
+TEST(SurfaceCli, MeshKeepsTheRunsFramesCompleteAndResumable) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim,mesh " + quote(scene), tmp.path()).code, 0);
+  const fs::path sim = tmp / "honey-dropSim";
+  const std::string coarse = readFile(sim / "mesh/honey.0001.obj");
+  ASSERT_EQ(runSoftsub("mesh -q --formats mesh,vdb --voxel-size 0.25 " + quote(sim), tmp.path()).code, 0);
+  const std::string fine = readFile(sim / "mesh/honey.0001.obj");
+  ASSERT_NE(fine, coarse);
+  const RunResult info = runSoftsub("info " + quote(sim), tmp.path());
+  EXPECT_NE(info.out.find("frames 0..2 complete"), std::string::npos) << info.out;
+  EXPECT_NE(readFile(sim / "manifest/honey-drop.0001.manifest").find("vdb/honey.0001.vdb"),
+            std::string::npos);
+  const RunResult resumed =
+      runSoftsub("run --frames 2 --formats sim,mesh --resume " + quote(scene), tmp.path());
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_EQ(readFile(sim / "mesh/honey.0001.obj"), fine) << "the resume rewrote a complete frame";
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim " + quote(scene), tmp.path()).code, 0);
+  EXPECT_FALSE(fs::exists(sim / "mesh/honey.0001.obj"));
+  EXPECT_FALSE(fs::exists(sim / "vdb/honey.0001.vdb"));
+}
+
 TEST(SurfaceCli, MeshDrawsProgressAndASummaryAtATerminal) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
