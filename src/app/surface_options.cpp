@@ -1,6 +1,8 @@
 #include "surface_options.h"
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
+
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -41,6 +43,15 @@ void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot&
                                    f.particleSize),
                        fmt::format("at least {:g} (blob radius / 64, and never below {:g})", least,
                                    surface::kMinVoxelSize));
+    // Coarser than the blob radius a lone blob is under two voxels across: its surface
+    // comes out displaced by most of a voxel, or empty. Warned, not refused: a voxel that
+    // coarse is also the only way to mesh a fluid beyond the finer grid's reach.
+    if (const double blob = s.radiusScale * f.particleSize; s.voxelSize > blob)
+      fmt::print(
+          stderr,
+          "warning: --voxel-size {:g} is coarser than fluid '{}''s blob radius ({:g}): its surface will be "
+          "displaced by up to a voxel or empty; at most {:g} keeps it\n",
+          s.voxelSize, f.name, blob, blob);
     if (s.voxelSize <= 0.0 && voxel < least)
       throw InputError({source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
                        fmt::format("{:g} is too small for surfaces: the default voxel, half of it ({:g}), is below "

@@ -163,6 +163,24 @@ TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
   EXPECT_TRUE(fs::exists(tmp / "m/mesh/a.0002.obj"));
 }
 
+// A voxel coarser than the blob radius put the surface most of a voxel off, or left it
+// empty, with no word: now a warning says so (the run still writes what was asked).
+TEST(SurfaceCli, AVoxelCoarserThanTheBlobIsWarnedAbout) {
+  TempDir tmp;
+  const fs::path scene = tmp / "blob.scene";
+  writeText(scene, oneFluid("1", "0 1 0  1 1 0"));
+  const RunResult coarse =
+      runSoftsub("run --frames 0 --formats mesh --voxel-size 5 --out c " + quote(scene), tmp.path());
+  EXPECT_EQ(coarse.code, 0) << coarse.err;
+  EXPECT_NE(coarse.err.find("warning: --voxel-size 5 is coarser than fluid 'a''s blob radius (1.5)"),
+            std::string::npos)
+      << coarse.err;
+  const RunResult fine =
+      runSoftsub("run --frames 0 --formats mesh --voxel-size 1.5 --out f " + quote(scene), tmp.path());
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_EQ(fine.err.find("--voxel-size"), std::string::npos) << fine.err;
+}
+
 // The surface grid indexes voxels with 32-bit integers: a particle more than 2^30 voxels
 // from the origin cannot be meshed. In the scene it is bad input, refused before anything
 // is written (it was "internal error", exit 1, after frame 0's .sim and an empty mesh/).
