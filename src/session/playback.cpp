@@ -127,6 +127,38 @@ Playback::Playback(const fs::path& path) {
     numbers_.resize(kept);
     frames_.resize(kept);
   }
+  // A frame whose .sim file is not the size its manifest lists was damaged after the
+  // run (cut, edited): it and the frames after it are left out, before anything is
+  // drawn or meshed (mesh and render wrote the frames before it, then failed on it).
+  for (std::size_t i = 0; i < numbers_.size(); ++i) {
+    const fs::path manifest = cache::manifestPath(folder_, sceneName_, numbers_[i]);
+    if (!fs::is_regular_file(manifest, ec)) continue;
+    cache::Manifest m;
+    try {
+      m = cache::decodeManifest(cache::readFileBytes(manifest), manifest.string());
+    } catch (const std::exception&) {
+      continue;  // a manifest that does not read says nothing
+    }
+    const std::string name = frames_[i].filename().string();
+    const auto entry = std::find_if(m.files.begin(), m.files.end(),
+                                    [&](const cache::ManifestEntry& e) { return e.path == name; });
+    const std::uintmax_t size = fs::file_size(frames_[i], ec);
+    if (entry == m.files.end() || ec || size == entry->bytes) continue;
+    const std::string why = fmt::format(
+        "'{}' has {} bytes, not the {} its manifest lists (changed since the run "
+        "wrote it)",
+        name, size, entry->bytes);
+    if (i == 0)
+      throw InputError(
+          {frames_[i].string(), 0, "frame"}, why,
+          "a folder whose frames are as the run wrote them: run the scene again, or `softsub info` "
+          "the folder to see which frames are whole");
+    notes_.push_back(
+        fmt::format("frames {} to {} of '{}' left out: {}", numbers_[i], numbers_.back(), sceneName_, why));
+    numbers_.resize(i);
+    frames_.resize(i);
+    break;
+  }
 
   // The scene file beside the folder: colours, sizes, frame rate, camera, container.
   const fs::path absolute = fs::absolute(folder_, ec).lexically_normal();

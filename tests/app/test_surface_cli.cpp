@@ -299,6 +299,33 @@ TEST(SurfaceCli, MeshKeepsTheRunsFramesCompleteAndResumable) {
   EXPECT_FALSE(fs::exists(sim / "vdb/honey.0001.vdb"));
 }
 
+// A frame cut after the run (its .sim no longer the size its manifest lists): mesh
+// wrote the frames before it, then failed on it (exit 2, half the surfaces written).
+// It and the later frames are left out now; a damaged first frame is refused first.
+TEST(SurfaceCli, MeshLeavesOutFramesChangedSinceTheRun) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  ASSERT_EQ(runSoftsub("run -q --frames 2 --formats sim " + quote(scene), tmp.path()).code, 0);
+  const fs::path sim = tmp / "honey-dropSim";
+  const auto cut = [&](const fs::path& file) {
+    const std::string bytes = readFile(file);
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 2);
+  };
+  cut(sim / "honey-drop.0001.sim");
+  const RunResult r = runSoftsub("mesh " + quote(sim), tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(sim / "mesh/honey.0000.obj"));
+  EXPECT_FALSE(fs::exists(sim / "mesh/honey.0001.obj"));
+  EXPECT_FALSE(fs::exists(sim / "mesh/honey.0002.obj"));
+  fs::remove_all(sim / "mesh");
+  cut(sim / "honey-drop.0000.sim");
+  const RunResult first = runSoftsub("mesh " + quote(sim), tmp.path());
+  EXPECT_EQ(first.code, 2) << first.err;
+  EXPECT_NE(first.err.find("its manifest lists (changed since the run wrote it)"), std::string::npos)
+      << first.err;
+  EXPECT_FALSE(fs::exists(sim / "mesh"));
+}
+
 TEST(SurfaceCli, MeshDrawsProgressAndASummaryAtATerminal) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
