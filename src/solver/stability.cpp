@@ -398,8 +398,9 @@ StabilityReport assessStability(const Model& model, const State* state) {
   };
   for (std::size_t a = 0; a < nf; ++a) {
     if (model.fluids[a].count == 0) continue;
-    for (std::size_t b = a; b < nf; ++b)
-      if (model.fluids[b].count > 0) add(a, b, model.fluids[b].particleMass, model.fluids[b].name);
+    for (std::size_t b = a; b < nf; ++b)  // a fluid of one particle has no pair of its own
+      if (model.fluids[b].count > (b == a ? 1u : 0u))
+        add(a, b, model.fluids[b].particleMass, model.fluids[b].name);
   }
   const std::vector<BodyRow> rows = bodyRows(model, state);
   for (std::size_t r = 0; r < rows.size(); ++r) {

@@ -367,5 +367,18 @@ TEST(Stability, AdaptiveSubstepsFollowTheFastestParticle) {
   }
 }
 
+// A fluid of one particle has no pair of its own: the jelly that cannot be stable at 1
+// substep is no warning when alone (a lone particle was reported unstable at any count).
+TEST(Stability, AFluidOfOneParticleHasNoPairOfItsOwn) {
+  scene::SceneDesc d = jellyBlob(1);
+  ASSERT_EQ(assessStability(scene::compile(d).model).verdict, StabilityVerdict::Unstable);
+  d.fluids[0].particles.resize(1);
+  const StabilityReport alone = assessStability(scene::compile(d).model);
+  EXPECT_TRUE(alone.pairs.empty());
+  EXPECT_EQ(alone.verdict, StabilityVerdict::Stable);
+  d.fluids[0].particles.resize(2);
+  EXPECT_EQ(assessStability(scene::compile(d).model).pairs.size(), 1u);
+}
+
 }  // namespace
 }  // namespace softsub::solver
