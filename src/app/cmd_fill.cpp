@@ -1,6 +1,7 @@
 #include "cmd_fill.h"
 #include "number_checks.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -83,9 +84,9 @@ int fillCommand(const FillOptions& o) {
   // The name goes into a scene (the snippet, unescaped) or becomes a fluid's (the PLY): the
   // reader's rule for fluid names, checked before the mesh is read.
   scene::checkFluidName(o.name, {"command line", 0, "--name"});
-  if (!(o.spacing > 0))
+  if (!(o.spacing > 0) || !std::isfinite(o.spacing))
     throw InputError({"command line", 0, "--spacing"}, fmt::format("{} is not a valid spacing", o.spacing),
-                     "a number > 0");
+                     "a finite number > 0");
   // A PLY mesh and the point cloud's --out may be one file (another spelling, a link).
   if (std::error_code ec; !o.out.empty() && std::filesystem::equivalent(o.mesh, o.out, ec) && !ec)
     throw InputError({"command line", 0, "--out"}, fmt::format("'{}' is the mesh being filled", o.out),

@@ -61,6 +61,11 @@ TEST(FillCommand, BadInputExitsTwoMissingFileThree) {
   writeBoxObj(tmp / "box.obj", 2.0);
   EXPECT_EQ(runSoftsub("fill box.obj --spacing 0 --out x.ply", tmp.path()).code, 2);
   EXPECT_EQ(runSoftsub("fill box.obj --spacing -1", tmp.path()).code, 2);
+  const RunResult inf = runSoftsub("fill box.obj --spacing inf", tmp.path());
+  EXPECT_EQ(inf.code, 2);
+  EXPECT_NE(inf.err.find("--spacing: inf is not a valid spacing (allowed: a finite number > 0)"),
+            std::string::npos)
+      << inf.err;
   EXPECT_EQ(runSoftsub("fill box.obj", tmp.path()).code, 2);  // --spacing is required
   EXPECT_EQ(runSoftsub("fill missing.obj --spacing 1", tmp.path()).code, 3);
   {
