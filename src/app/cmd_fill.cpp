@@ -27,7 +27,9 @@ CLI::App* addFillCommand(CLI::App& root, FillOptions& o) {
   CLI::App* cmd = root.add_subcommand(
       "fill", "Fill a mesh with particles (the seed's 'convert to particles'): a PLY point cloud or a <Fluid> block");
   cmd->add_option("MESH", o.mesh, "Mesh file (OBJ, PLY, STL, glTF, FBX)")->required()->check(nonEmptyPath(false));
-  cmd->add_option("--spacing", o.spacing, "Lattice step = particle diameter, scene units (> 0)")->required();
+  cmd->add_option("--spacing", o.spacing,
+                  "Lattice step = particle diameter, scene units (a finite number > 0)")
+      ->required();
   auto* out =
       cmd->add_option("--out", o.out, "Write the particles as a binary PLY point cloud to this .ply file")
           ->check(nonEmptyPath())
