@@ -46,7 +46,7 @@ int meshCommand(const MeshOptions& o) {
     throw InputError({"command line", 0, "--formats"},
                      fmt::format("'{}' is not a surface format list", o.formats), kSurfaceFormats);
   const session::Playback playback(o.folder);
-  checkSurfaceOptions(o.surface, playback.load(0), o.folder);
+  checkSurfaceOptions(o.surface, playback.load(0), o.folder, o.quiet);
   const surface::SurfaceSettings& settings = o.surface;
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 

@@ -232,7 +232,7 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("no frame of {} is in '{}'", o.input, o.frames),
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
-    if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input);
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input, o.quiet);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
     if (chatty)
       for (const std::string& note : rec.notes()) fmt::print(stderr, "note: {}\n", note);
@@ -276,7 +276,7 @@ int renderCommand(const RenderOptions& o) {
     const render::RenderScene view = renderSceneOf(loaded.desc, compiled.objectMeshes);
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
-    if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file);
+    if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file, o.quiet);
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     prepareOutputs();
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);

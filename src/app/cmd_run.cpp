@@ -291,7 +291,7 @@ int runCommand(const RunOptions& o) {
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
                      "add mesh or vdb to --formats, or leave them out");
-  if (formats.mesh || formats.vdb) checkSurfaceOptions(o.surface, sim.snapshot(), sceneFile);
+  if (formats.mesh || formats.vdb) checkSurfaceOptions(o.surface, sim.snapshot(), sceneFile, o.quiet);
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets errors and warnings only (a warning is about this run's result: a farm
   // log must show it too). --quiet leaves errors alone.

@@ -186,6 +186,11 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
   }
   for (const std::int64_t f : cache::checkpointFrames(outDir, sceneName))
     removeQuietly(cache::checkpointPath(outDir, sceneName, f));
+  // A frame folder left empty goes too (a folder exists only for a format written);
+  // one that still holds anything stays.
+  if (removed > 0)
+    for (const char* folder : {"pdc", "ply", "mesh", "vdb"})
+      if (std::error_code ec; fs::is_empty(outDir / folder, ec) && !ec) removeQuietly(outDir / folder);
   return removed;
 }
 

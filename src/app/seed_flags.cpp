@@ -74,8 +74,20 @@ std::vector<std::string> rewriteSeedFlags(std::span<const std::string> args) {
       out.push_back(std::string(longName));  // CLI11 reports the missing value
     }
   }
-  const bool namesSubcommand = out.size() > 1 && isSubcommand(out[1]);
-  if (sawSeedFlag && !namesSubcommand) out.insert(out.begin() + 1, "run");
+  // The command comes after the root's own options (`softsub --threads 2 view -f x`):
+  // "run" was put before them and the named command became a second scene.
+  std::size_t k = 1;
+  while (k < out.size()) {
+    if (out[k] == "--threads" && k + 1 < out.size()) {
+      k += 2;
+    } else if (out[k].starts_with("--threads=")) {
+      ++k;
+    } else {
+      break;
+    }
+  }
+  const bool namesSubcommand = k < out.size() && isSubcommand(out[k]);
+  if (sawSeedFlag && !namesSubcommand) out.insert(out.begin() + static_cast<std::ptrdiff_t>(k), "run");
   return out;
 }
 

@@ -33,7 +33,8 @@ bool surfaceOptionsGiven(const surface::SurfaceSettings& s) {
   return s.voxelSize != defaults.voxelSize || s.radiusScale != defaults.radiusScale;
 }
 
-void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot& frame, const std::string& source) {
+void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot& frame,
+                         const std::string& source, bool quiet) {
   for (const FluidSnapshot& f : frame.fluids) {
     const double least = surface::minimumVoxelSize(f.particleSize, s);
     const double voxel = surface::voxelSizeFor(f.particleSize, s);
@@ -46,13 +47,15 @@ void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot&
     // Coarser than the blob radius a lone blob is under two voxels across: its surface
     // comes out displaced by most of a voxel, or empty. Warned, not refused: a voxel that
     // coarse is also the only way to mesh a fluid beyond the finer grid's reach.
-    if (const double blob = s.radiusScale * f.particleSize; s.voxelSize > blob)
+    if (const double blob = s.radiusScale * f.particleSize; s.voxelSize > blob && !quiet)
       fmt::print(
           stderr,
           "warning: --voxel-size {:g} is coarser than fluid '{}''s blob radius ({:g}): its surface will be "
           "displaced by up to a voxel or empty; at most {:g} keeps it\n",
           s.voxelSize, f.name, blob, blob);
-    if (s.voxelSize <= 0.0 && voxel < least)
+    // Particle sizes are single precision (4e-5 is 3.9999999e-5): the documented bound
+    // itself was refused without the 1e-6.
+    if (s.voxelSize <= 0.0 && voxel < least * (1 - 1e-6))
       throw InputError({source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
                        fmt::format("{:g} is too small for surfaces: the default voxel, half of it ({:g}), is below "
                                    "the smallest the surfaces' grid takes",

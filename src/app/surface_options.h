@@ -23,8 +23,9 @@ void addSurfaceOptions(CLI::App* cmd, surface::SurfaceSettings& settings, const 
 /// (below surface::minimumVoxelSize for its particle size and the blob radius), or naming
 /// the fluid's ParticleSize or Particles in `source` (the scene or recording the frame
 /// comes from) when the default voxel is too small or a particle is beyond the grid's
-/// reach (surface::gridReach). Call it only when surfaces will be made.
+/// reach (surface::gridReach). Call it only when surfaces will be made. Unless `quiet`,
+/// warns on stderr about a --voxel-size coarser than a fluid's blob radius.
 void checkSurfaceOptions(const surface::SurfaceSettings& settings, const FrameSnapshot& frame,
-                         const std::string& source);
+                         const std::string& source, bool quiet);
 
 }  // namespace softsub::app

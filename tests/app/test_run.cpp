@@ -496,6 +496,15 @@ TEST(Run, AFreshRunRemovesTheEarlierRunsFramesOnly) {
   EXPECT_FALSE(fs::exists(tmp / "o/shot.0002.sim"));
   EXPECT_FALSE(fs::exists(tmp / "o/shot.0003.sim"));
   EXPECT_EQ(readFile(tmp / "o/pdc/notes.txt"), "the artist's");
+  // A format the fresh run does not write leaves no empty folder behind.
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 1 --formats sim,ply --out o", tmp.path()).code, 0);
+  EXPECT_EQ(listFiles(tmp / "o/pdc"), (std::vector<std::string>{"notes.txt"}));
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 1 --formats sim,ply --out q", tmp.path()).code, 0);
+  ASSERT_TRUE(fs::exists(tmp / "q/ply/shot.0001.ply"));
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 1 --formats pdc --out q", tmp.path()).code, 0);
+  EXPECT_FALSE(fs::exists(tmp / "q/ply"));
+  EXPECT_FALSE(fs::exists(tmp / "q/shot.0000.sim"));
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 1 --out o", tmp.path()).code, 0);
   // Resuming keeps the run's frames.
   ASSERT_EQ(runSoftsub("run -q shot.scene --frames 2 --out o --resume", tmp.path()).code, 0);
   EXPECT_TRUE(fs::exists(tmp / "o/shot.0001.sim"));

@@ -43,6 +43,16 @@ TEST(SeedFlags, KeepsAnExplicitSubcommand) {
             (Args{"view", "-f", "a.scene", "--substeps=4", "--draw-per-frame=0", "--record=0"}));
 }
 
+// After the root's --threads the named command was missed: "run" went in first and the
+// command became a second scene ("--scene: At Most 1 required but received 2").
+TEST(SeedFlags, FindsTheCommandAfterTheRootsOptions) {
+  EXPECT_EQ(rewrite({"--threads", "1", "view", "-f", "a.scene", "-updateNum", "8"}),
+            (Args{"--threads", "1", "view", "-f", "a.scene", "--substeps=8"}));
+  EXPECT_EQ(rewrite({"--threads=2", "run", "a.scene", "-record", "0"}),
+            (Args{"--threads=2", "run", "a.scene", "--record=0"}));
+  EXPECT_EQ(rewrite({"--threads", "1", "-f", "a.scene"}), (Args{"--threads", "1", "run", "-f", "a.scene"}));
+}
+
 TEST(SeedFlags, LeavesOtherLinesAlone) {
   EXPECT_EQ(rewrite({}), Args{});
   EXPECT_EQ(rewrite({"--help"}), Args{"--help"});

@@ -156,6 +156,10 @@ TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
   EXPECT_NE(voxel.err.find("--voxel-size: 1e-05 is too small for fluid 'a'"), std::string::npos) << voxel.err;
   EXPECT_NE(voxel.err.find("never below 2e-05"), std::string::npos) << voxel.err;
   EXPECT_FALSE(fs::exists(tmp / "o"));
+  // The documented bound itself, 4e-5 (3.9999999e-5 in single precision), was refused.
+  writeText(tmp / "edge.scene", oneFluid("4e-5", "0 0 0  4e-5 0 0"));
+  const RunResult edge = runSoftsub("run --frames 0 --formats mesh --out e edge.scene", tmp.path());
+  EXPECT_EQ(edge.code, 0) << edge.err;
   // Without surfaces the particle size is fine, and a voxel of 2e-5 meshes it.
   EXPECT_EQ(runSoftsub("run --formats sim --out s " + quote(scene), tmp.path()).code, 0);
   const RunResult meshed = runSoftsub("run --formats mesh --voxel-size 2e-5 --out m " + quote(scene), tmp.path());
@@ -175,6 +179,10 @@ TEST(SurfaceCli, AVoxelCoarserThanTheBlobIsWarnedAbout) {
   EXPECT_NE(coarse.err.find("warning: --voxel-size 5 is coarser than fluid 'a''s blob radius (1.5)"),
             std::string::npos)
       << coarse.err;
+  const RunResult quiet =
+      runSoftsub("run -q --frames 0 --formats mesh --voxel-size 5 --out c " + quote(scene), tmp.path());
+  EXPECT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("--voxel-size"), std::string::npos) << "-q: " << quiet.err;
   const RunResult fine =
       runSoftsub("run --frames 0 --formats mesh --voxel-size 1.5 --out f " + quote(scene), tmp.path());
   EXPECT_EQ(fine.code, 0) << fine.err;
