@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <optional>
 #include <system_error>
 #include <utility>
 
@@ -164,13 +165,10 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
   std::size_t removed = 0;
   for (const std::int64_t f : cache::manifestFrames(outDir, sceneName)) {
     const fs::path path = cache::manifestPath(outDir, sceneName, f);
-    cache::Manifest m;
-    try {
-      m = cache::decodeManifest(cache::readFileBytes(path), path.string());
-    } catch (const std::exception&) {
-      m.files.clear();  // a manifest that does not read names no file
-    }
-    for (const cache::ManifestEntry& e : m.files) {
+    // A manifest that does not read names no file.
+    const std::vector<cache::ManifestEntry> listed =
+        cache::readManifestIfValid(path).value_or(cache::Manifest{}).files;
+    for (const cache::ManifestEntry& e : listed) {
       const fs::path file = outDir / e.path;
       std::error_code ec;
       if (!frameFile(e.path) || !fs::is_regular_file(file, ec) || fs::file_size(file, ec) != e.bytes || ec)
@@ -197,21 +195,16 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
 void updateFrameManifest(const std::filesystem::path& outDir, const std::string& sceneName,
                          std::int64_t frame, const std::vector<std::filesystem::path>& files) {
   const std::filesystem::path path = cache::manifestPath(outDir, sceneName, frame);
-  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec)) return;
-  cache::Manifest m;
-  try {
-    m = cache::decodeManifest(cache::readFileBytes(path), path.string());
-  } catch (const std::exception&) {
-    return;
-  }
+  std::optional<cache::Manifest> m = cache::readManifestIfValid(path);
+  if (!m) return;
   for (const std::filesystem::path& file : files) {
     const cache::ManifestEntry now = cache::entryOf(outDir, file);
-    const auto it = std::find_if(m.files.begin(), m.files.end(),
+    const auto it = std::find_if(m->files.begin(), m->files.end(),
                                  [&](const cache::ManifestEntry& e) { return e.path == now.path; });
-    if (it != m.files.end()) it->bytes = now.bytes;
-    else m.files.push_back(now);
+    if (it != m->files.end()) it->bytes = now.bytes;
+    else m->files.push_back(now);
   }
-  cache::writeFileAtomic(path, cache::encodeManifest(m));
+  cache::writeFileAtomic(path, cache::encodeManifest(*m));
 }
 
 void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
@@ -228,13 +221,9 @@ void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::stri
     if (other == sceneName) continue;
     for (const std::int64_t frame : cache::manifestFrames(outDir, other)) {
       const std::filesystem::path path = cache::manifestPath(outDir, other, frame);
-      cache::Manifest m;
-      try {
-        m = cache::decodeManifest(cache::readFileBytes(path), path.string());
-      } catch (const std::exception&) {
-        continue;  // a manifest that does not read names no file
-      }
-      for (const cache::ManifestEntry& e : m.files)
+      const std::optional<cache::Manifest> m = cache::readManifestIfValid(path);
+      if (!m) continue;  // a manifest that does not read names no file
+      for (const cache::ManifestEntry& e : m->files)
         for (const std::string& prefix : prefixes)
           if (e.path.starts_with(prefix))
             throw InputError(

@@ -93,14 +93,13 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
                      const std::filesystem::path& outDir) {
   namespace fs = std::filesystem;
   const scene::SceneDesc& desc = loaded.desc;
-  using Input = InputMesh;
-  const std::vector<Input> inputs = inputMeshes(loaded);
+  const std::vector<InputMesh> inputs = inputMeshes(loaded);
   // Both exist (the input was just read): one file, whatever the paths' spelling.
   const auto same = [](const fs::path& a, const fs::path& b) {
     std::error_code ec;
     return fs::equivalent(a, b, ec) && !ec;
   };
-  const auto refuse = [&](const Input& in, const fs::path& out) {
+  const auto refuse = [&](const InputMesh& in, const fs::path& out) {
     throw InputError(
         {loaded.file, in.line, in.element},
         fmt::format("the mesh '{}' is a file this run would write over ('{}')", in.path.string(),
@@ -120,7 +119,7 @@ void checkInputsKept(const LoadedScene& loaded, const cache::Formats& formats,
                                      (outDir / sub).string()),
                          "another --out, or the scene kept outside the run's output folders");
   }
-  for (const Input& in : inputs) {
+  for (const InputMesh& in : inputs) {
     if (formats.sim)
       for (const scene::ObjectDesc& o : desc.objects) {
         const fs::path out = outDir / cache::geometryFileName(loaded.name, o.name);

@@ -146,6 +146,15 @@ Manifest decodeManifest(std::string_view text, const std::string& file) {
   return m;
 }
 
+std::optional<Manifest> readManifestIfValid(const std::filesystem::path& path) {
+  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  try {
+    return decodeManifest(readFileBytes(path), path.string());
+  } catch (const std::exception&) {  // InputError, IoError
+    return std::nullopt;
+  }
+}
+
 ManifestEntry entryOf(const std::filesystem::path& dir, const std::filesystem::path& file) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(file, ec);

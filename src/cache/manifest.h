@@ -38,6 +38,9 @@ struct Manifest {
 [[nodiscard]] std::string encodeManifest(const Manifest& manifest);
 /// Parses a manifest; InputError naming `file`, the line and the problem when it is not one.
 [[nodiscard]] Manifest decodeManifest(std::string_view text, const std::string& file);
+/// The manifest file at `path`, or nothing when it is missing, cannot be read or is not
+/// one (for readers to whom such a manifest says nothing).
+[[nodiscard]] std::optional<Manifest> readManifestIfValid(const std::filesystem::path& path);
 
 /// The entry for `file` (inside `dir`) as it is on disk now; IoError if it cannot be
 /// looked at.

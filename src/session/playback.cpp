@@ -131,19 +131,14 @@ Playback::Playback(const fs::path& path) {
   // run (cut, edited): it and the frames after it are left out, before anything is
   // drawn or meshed (mesh and render wrote the frames before it, then failed on it).
   for (std::size_t i = 0; i < numbers_.size(); ++i) {
-    const fs::path manifest = cache::manifestPath(folder_, sceneName_, numbers_[i]);
-    if (!fs::is_regular_file(manifest, ec)) continue;
-    cache::Manifest m;
-    try {
-      m = cache::decodeManifest(cache::readFileBytes(manifest), manifest.string());
-    } catch (const std::exception&) {
-      continue;  // a manifest that does not read says nothing
-    }
+    const std::optional<cache::Manifest> m =
+        cache::readManifestIfValid(cache::manifestPath(folder_, sceneName_, numbers_[i]));
+    if (!m) continue;  // none, or one that does not read: it says nothing
     const std::string name = frames_[i].filename().string();
-    const auto entry = std::find_if(m.files.begin(), m.files.end(),
+    const auto entry = std::find_if(m->files.begin(), m->files.end(),
                                     [&](const cache::ManifestEntry& e) { return e.path == name; });
     const std::uintmax_t size = fs::file_size(frames_[i], ec);
-    if (entry == m.files.end() || ec || size == entry->bytes) continue;
+    if (entry == m->files.end() || ec || size == entry->bytes) continue;
     const std::string why = fmt::format(
         "'{}' has {} bytes, not the {} its manifest lists (changed since the run "
         "wrote it)",
