@@ -1,8 +1,10 @@
 #include "run_journal.h"
 
 #include <algorithm>
+#include <array>
 #include <iterator>
 #include <optional>
+#include <string_view>
 #include <system_error>
 #include <utility>
 
@@ -155,12 +157,12 @@ ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& s
 std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
                              const std::vector<std::filesystem::path>& keep) {
   namespace fs = std::filesystem;
-  const auto frameFile = [](const fs::path& p) {  // relative, without "..": decodeManifest checked
+  constexpr std::array<std::string_view, 4> kFrameFolders{"pdc", "ply", "mesh", "vdb"};
+  const auto frameFile = [&](const fs::path& p) {  // relative, without "..": decodeManifest checked
     const auto first = p.begin();
     if (first == p.end()) return false;
     if (std::next(first) == p.end()) return p.extension() == ".sim";
-    const std::string folder = first->string();
-    return folder == "pdc" || folder == "ply" || folder == "mesh" || folder == "vdb";
+    return std::find(kFrameFolders.begin(), kFrameFolders.end(), first->string()) != kFrameFolders.end();
   };
   std::size_t removed = 0;
   for (const std::int64_t f : cache::manifestFrames(outDir, sceneName)) {
@@ -187,7 +189,7 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
   // A frame folder left empty goes too (a folder exists only for a format written);
   // one that still holds anything stays.
   if (removed > 0)
-    for (const char* folder : {"pdc", "ply", "mesh", "vdb"})
+    for (const std::string_view folder : kFrameFolders)
       if (std::error_code ec; fs::is_empty(outDir / folder, ec) && !ec) removeQuietly(outDir / folder);
   return removed;
 }
