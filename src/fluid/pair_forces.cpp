@@ -160,6 +160,14 @@ std::size_t PairList::memoryBytes() const {
   return b;
 }
 
+// Groups of 8 slots for the closed-form kernel: a group's index has 24 bits, and the
+// grouped build does not exclude a rigid owner's own pairs.
+bool PairList::groups(const forces::InteractionTable& table, std::size_t particles,
+                      const ListOptions& options) {
+  return options.closedForm && table.closedFormLj().has_value() && particles < (std::size_t{1} << 27) &&
+         options.exclusiveOwnersFrom == UINT32_MAX;
+}
+
 void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                      const ParticleStore& s, float skin, const ListOptions& options) {
   build(grid, table, s, skin, options, nullptr);
@@ -182,10 +190,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   layerCount_ = gridLayers.size();
   if (layers_.size() < layerCount_) layers_.resize(layerCount_);
   phases_ = grid.layersByPhase();
-  // Groups of 8 slots for the closed-form kernel: a group's index has 24 bits, and the
-  // grouped build does not exclude a rigid owner's own pairs.
-  grouped_ = options.closedForm && table.closedFormLj().has_value() && s.size() < (std::size_t{1} << 27) &&
-             options.exclusiveOwnersFrom == UINT32_MAX;
+  grouped_ = groups(table, s.size(), options);
   // Cells, and so layers, come in slot order: a layer is a run of cells.
   firstCell_.resize(layerCount_ + 1);  // keeps its memory: no allocation once warmed up
   {

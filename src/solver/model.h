@@ -56,8 +56,14 @@ struct Model {
   std::vector<MaterialInfo> materials;
   forces::InteractionTable table;
   /// Pair-list margin as a fraction of the longest cutoff: larger lists, rebuilt less
-  /// often (docs/architecture.md, "The pair list").
+  /// often (docs/architecture.md, "The pair list"). For lists of pairs (the table
+  /// kernel).
   double pairListSkin = 0.1;
+  /// The same for lists of windows of 8 slots (the closed-form Lennard-Jones kernel,
+  /// fluid::PairList::groups): that kernel's cost goes with its windows, about one per
+  /// candidate range whatever the skin, not with its pairs, so a wider margin costs it
+  /// little and saves list builds (docs/benchmarks.md, twenty-third session).
+  double windowListSkin = 0.15;
   /// The pair list's second validity test (solver/list_guard.h): a list whose two
   /// largest displacements add up to the skin is kept while the particles moved
   /// together (a falling or flowing body of goo). Off: rebuilt at once (tests and

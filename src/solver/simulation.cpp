@@ -141,7 +141,8 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     rigid_.writeParticles(model_.bodies, state_.bodies, state_.particles);
   }
   cellSize_ = static_cast<float>(c > 0 ? c : 1.0);
-  skin_ = static_cast<float>(model_.pairListSkin) * cellSize_;
+  const bool windows = fluid::PairList::groups(model_.table, state_.particles.size(), listOptions_);
+  skin_ = static_cast<float>(windows ? model_.windowListSkin : model_.pairListSkin) * cellSize_;
   // Speeds are measured in interaction distances: a material's own cutoff (or contact
   // reach for bodies), the longest one for a material that interacts with nothing.
   reach_.resize(nm);
@@ -522,7 +523,8 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
 //   explicit Euler (the seed's): forces at (x_n, v_n); x += v_n dt; v += a dt
 //   symplectic Euler:            forces at (x_n, v_n); v += a dt; x += v_{n+1} dt
 //   velocity Verlet:             v += a_n dt/2; x += v dt; forces at x_{n+1} (with the
-//                                half-step velocity); v += a_{n+1} dt/2
+//                                half-step velocity); v += a_{n+1} dt/2, the last kick
+//                                merged with the next substep's first inside a frame
 // Rigid bodies step once per substep whatever the integrator (semi-implicit Euler with
 // impulses: Verlet has no explicit velocity for impulses to change, seed 2.3.4), after
 // the fluid has moved, with the forces of the last evaluation (docs/architecture.md).
@@ -556,19 +558,29 @@ void Simulation::step() {
       stepBodies(this->dt());
       break;
     }
-    case Integrator::VelocityVerlet:
+    case Integrator::VelocityVerlet: {
       if (!state_.forcesValid) computeForces();
+      // Leapfrog form: inside a frame, a substep's closing half kick and the next one's
+      // opening half kick are one kick of dt (a pass over the particles fewer). The
+      // frame's last substep closes with its half kick, so velocities are at whole steps
+      // wherever a frame ends (caches, energies, checkpoints, --adaptive).
+      const float opening = kickOwed_ ? dt : 0.5f * dt;
+      const bool closes = substepInFrame_ + 1 >= substeps_;
+      ++substepInFrame_;
       if (fused) {
-        sweep(0.5f * dt, dt, false, false);
+        sweep(opening, dt, false, !closes);  // checked here unless the closing kick follows
       } else {
-        kick(0.5f * dt);
+        kick(opening);
         drift(dt);
         applyWalls();
         stepBodies(this->dt());
       }
       computeForces();
-      kick(0.5f * dt);
-      break;
+      kickOwed_ = !closes;
+      if (closes) kick(0.5f * dt);
+      if (closes || !fused) checkFinite();
+      return;
+    }
   }
   ++substepInFrame_;
   checkFinite();
@@ -734,6 +746,7 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
     if (!model_.bodies.empty()) rigid_.findBodySlots(model_.bodies, state_.particles);
   };
   substepInFrame_ = 0;
+  kickOwed_ = false;
   substeps_ = std::max(1, model_.substeps);
   listValid_ = false;
   knownStale_ = -1;

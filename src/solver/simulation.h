@@ -29,8 +29,10 @@ class Simulation {
   Simulation(const Model& model, State state);
 
   /// One substep of length dt() (docs/architecture.md, "The step"), then the blow-up
-  /// check (checkSubstep). Throws BlowUpError naming the frame, the substep, the fluid
-  /// or object, the particle id, the quantity and its value.
+  /// check (checkFinite). Throws BlowUpError naming the frame, the substep, the fluid
+  /// or object, the particle id, the quantity and its value. Velocity Verlet runs in
+  /// leapfrog form: after a substep that does not end the frame, the velocities are
+  /// half a step ahead of the positions (the last substep of a frame brings them level).
   void step();
   /// What the first substep does before it moves anything, done now: velocity Verlet's
   /// first force evaluation (with the grid and the pair list). Nothing for the Euler
@@ -108,6 +110,9 @@ class Simulation {
 
   /// How many times the grid and pair list were rebuilt (diagnostics, benchmarks).
   [[nodiscard]] std::int64_t listBuilds() const { return listBuilds_; }
+  /// The pair list's margin beyond the cutoff, in scene units (Model::pairListSkin or
+  /// Model::windowListSkin of the longest interaction distance).
+  [[nodiscard]] float listSkin() const { return skin_; }
 
   /// Throws BlowUpError naming the first particle (lowest id) or body whose position or
   /// velocity is not finite or whose speed is beyond model.maxTravelPerSubstep.
@@ -166,6 +171,7 @@ class Simulation {
   double capped_ = 0;      // cappedSubsteps()
   [[nodiscard]] int capSubsteps(double needed) const;
   int substepInFrame_ = 0; // substeps done in the current frame
+  bool kickOwed_ = false;  // velocity Verlet: velocities are a half kick behind (step())
   int stableSubsteps_ = 1; // the stability estimate's minimum (adaptive only)
   std::vector<float> reach_;  // per material: the interaction distance speeds are measured in
   std::vector<float> invReach_;  // 1 / reach_

@@ -72,7 +72,9 @@ TEST(Simulation, MomentumConservedWithoutGravityOrWalls) {
   }
 }
 
-TEST(Simulation, VelocityVerletConservesEnergyOfATrueLennardJonesCluster) {
+// 27 argon atoms of the true Lennard-Jones force (cutoff 2.5) on a 3 x 3 x 3 lattice,
+// moving a little; velocity Verlet, no gravity, no walls.
+Model ljCluster(State& s, const forces::LennardJonesForce& lj) {
   Model m;
   m.gravity = Vec3::Zero();
   m.integrator = Integrator::VelocityVerlet;
@@ -81,12 +83,17 @@ TEST(Simulation, VelocityVerletConservesEnergyOfATrueLennardJonesCluster) {
   m.fluids.push_back({"argon", {1, 1, 1}, 1, 1, 0, 27});
   m.materials.push_back({1.0f, 0.5f});
   m.table = forces::InteractionTable(1);
-  const forces::LennardJonesForce lj{1, 1, 2.5};
   m.table.set(0, 0, {lj, 0, 0});
-  State s;
   for (int i = 0; i < 27; ++i)
     s.particles.add(1.15f * (i % 3), 1.15f * ((i / 3) % 3), 1.15f * (i / 9), 0.1f * ((i * 7) % 5 - 2),
                     0.1f * ((i * 3) % 5 - 2), 0.1f * ((i * 11) % 5 - 2), 0, 0);
+  return m;
+}
+
+TEST(Simulation, VelocityVerletConservesEnergyOfATrueLennardJonesCluster) {
+  const forces::LennardJonesForce lj{1, 1, 2.5};
+  State s;
+  const Model m = ljCluster(s, lj);
   auto energy = [&](const ParticleStore& p) {
     double e = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -108,6 +115,28 @@ TEST(Simulation, VelocityVerletConservesEnergyOfATrueLennardJonesCluster) {
   // The cutoff makes U jump by U(rc) ~ 0.016 eps per pair crossing; the integrator and
   // the float tables add far less.
   EXPECT_LT(worst, 0.05 * std::abs(e0)) << "E0 = " << e0;
+}
+
+// The list's margin follows the kernel: Model::windowListSkin of the cutoff where the
+// list holds windows for the closed-form kernel (one fluid of the true Lennard-Jones
+// force), Model::pairListSkin elsewhere (the table kernel: two fluids; the
+// closed form switched off).
+TEST(Simulation, ListSkinFollowsTheKernel) {
+  State s;
+  Model lj = ljCluster(s, forces::LennardJonesForce{1, 1, 2.5});
+  ASSERT_TRUE(fluid::PairList::groups(lj.table, s.particles.size(), {}));
+  EXPECT_FLOAT_EQ(Simulation(lj, s).listSkin(), static_cast<float>(lj.windowListSkin) * 2.5f);
+  lj.windowListSkin = 0.3;
+  EXPECT_FLOAT_EQ(Simulation(lj, s).listSkin(), 0.75f);
+  lj.table.set(0, 0, {forces::LennardJones{10, 0.9, -5, 100, 2.5}, 0, 0});  // a tabled function
+  ASSERT_FALSE(fluid::PairList::groups(lj.table, s.particles.size(), {}));
+  EXPECT_FLOAT_EQ(Simulation(lj, s).listSkin(), static_cast<float>(lj.pairListSkin) * 2.5f);
+
+  Model two = twoFluids();
+  const State cloud = cloudState(300, 4, two);
+  EXPECT_FLOAT_EQ(Simulation(two, cloud).listSkin(),
+                  static_cast<float>(two.pairListSkin) * static_cast<float>(two.table.maxCutoff()));
+  EXPECT_NE(two.pairListSkin, two.windowListSkin);
 }
 
 // prepare() does velocity Verlet's first force evaluation ahead (what `bench lammps`
