@@ -65,9 +65,10 @@ class PairList {
   }
   /// Whether the last build listed groups for the closed-form kernel (Layer::grouped).
   [[nodiscard]] bool grouped() const { return grouped_; }
-  /// Whether build() lists groups for `store` of `particles` slots: the table has a closed
-  /// form (one material, the true Lennard-Jones force), options.closedForm, no rigid
-  /// owners to exclude, and fewer than 2^27 slots (a group's index has 24 bits).
+  /// Whether build() lists groups for a store of `particles` slots with this table and
+  /// these options: the table has a closed form (one material, the true Lennard-Jones
+  /// force), options.closedForm, no rigid owners to exclude, and fewer than 2^27 slots
+  /// (a group's index has 24 bits).
   [[nodiscard]] static bool groups(const forces::InteractionTable& table, std::size_t particles,
                                    const ListOptions& options);
   /// Number of listed pairs.
