@@ -138,6 +138,7 @@ EditResult LiveSession::applyEdits() {
   // Continue from the current particles. Only what the model decides per particle is
   // taken from the new compile: its material row (objects that now differ in their
   // interactions get rows of their own), found by stable id.
+  sim_->levelVelocities();  // an edit between two substeps of a frame: whole-step velocities
   solver::State state = sim_->state();
   state.forcesValid = false;
   const ParticleStore& fresh = compiled.state.particles;

@@ -600,7 +600,14 @@ void Simulation::advanceFrame() {
   finishFrame();
 }
 
+void Simulation::levelVelocities() {
+  if (!kickOwed_) return;
+  kick(0.5f * static_cast<float>(dt()));  // with the forces of the last substep's positions
+  kickOwed_ = false;
+}
+
 void Simulation::finishFrame() {
+  levelVelocities();
   ++state_.frame;
   substepInFrame_ = 0;
   checkFinite();

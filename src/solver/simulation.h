@@ -45,8 +45,13 @@ class Simulation {
   /// adaptive), steps them, then frame += 1. BlowUpError as step().
   void advanceFrame();
   /// Ends a frame stepped substep by substep with step() (the viewer's -drawPerFrame 0):
-  /// frame += 1, then the same check as advanceFrame.
+  /// levelVelocities(), frame += 1, then the same check as advanceFrame.
   void finishFrame();
+  /// Velocity Verlet: gives the velocities the half kick a substep inside a frame owes
+  /// (step()), so that they are at the positions' time; nothing otherwise. For a caller
+  /// that ends a frame after fewer substeps than substeps() (finishFrame does it) or
+  /// takes the state mid-frame to continue it in another simulation.
+  void levelVelocities();
 
   /// Substeps of the current (or next) frame: model.substeps, or with
   /// model.adaptiveSubsteps the count chosen at the frame's start.

@@ -67,6 +67,28 @@ TEST_P(EachIntegrator, FreeFallMatchesTheDiscreteSolution) {
   }
 }
 
+// A frame ended after fewer substeps than the scene's (the viewer after an edit between
+// two substeps continues in a new simulation, whose count starts again) still ends with
+// whole-step velocities; so does a state taken mid-frame through levelVelocities().
+TEST_P(EachIntegrator, FinishFrameLevelsVelocitiesAfterAnyNumberOfSubsteps) {
+  const Model m = loneParticleModel(GetParam(), false, 0);
+  const double dt = m.dt(), g = -9.81;
+  for (int n = 1; n < m.substeps; ++n) {
+    Simulation sim(m, loneParticle(50, 2)), copy(m, loneParticle(50, 2));
+    for (int k = 0; k < n; ++k) {
+      sim.step();
+      copy.step();
+    }
+    sim.finishFrame();
+    EXPECT_NEAR(sim.state().particles.vy[0], 2 + n * g * dt, 1e-5) << n;
+    EXPECT_NEAR(sim.state().particles.py[0], exactY(GetParam(), 50, 2, g, dt, n), 2e-5 * 50) << n;
+    copy.levelVelocities();
+    EXPECT_EQ(copy.state().particles.vy[0], sim.state().particles.vy[0]) << n;
+    copy.levelVelocities();  // once only
+    EXPECT_EQ(copy.state().particles.vy[0], sim.state().particles.vy[0]) << n;
+  }
+}
+
 TEST_P(EachIntegrator, OneBounceMatchesTheDiscreteSolution) {
   // Dropped from rest at y0: the first step whose position goes below the radius puts
   // the particle on the floor with velocity -e v; from there it is free flight again.
