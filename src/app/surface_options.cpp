@@ -53,9 +53,7 @@ void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot&
           "warning: --voxel-size {:g} is coarser than fluid '{}''s blob radius ({:g}): its surface will be "
           "displaced by up to a voxel or empty; at most {:g} keeps it\n",
           s.voxelSize, f.name, blob, blob);
-    // Particle sizes are single precision (4e-5 is 3.9999999e-5): the documented bound
-    // itself was refused without the 1e-6.
-    if (s.voxelSize <= 0.0 && voxel < least * (1 - 1e-6))
+    if (s.voxelSize <= 0.0 && surface::belowVoxelFloor(voxel, least))
       throw InputError({source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
                        fmt::format("{:g} is too small for surfaces: the default voxel, half of it ({:g}), is below "
                                    "the smallest the surfaces' grid takes",

@@ -483,9 +483,8 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
 
   auto impl = std::make_shared<Impl>();
   impl->voxel = voxelSizeFor(particleSize, s);
-  // Less a millionth: half a single-precision particle size of 4e-5 is 1.99999995e-5
-  // (kMinVoxelSize has room: OpenVDB's own floor is 1.45e-5).
-  if (impl->voxel < kMinVoxelSize * (1 - 1e-6))
+  // With the slack (kMinVoxelSize has room: OpenVDB's own floor is 1.45e-5).
+  if (belowVoxelFloor(impl->voxel, kMinVoxelSize))
     throw std::invalid_argument("surface: voxel size below the smallest the grid takes (allowed: voxel >= " +
                                 fmt::format("{:g}", kMinVoxelSize) + ")");
   const double vx = impl->voxel;

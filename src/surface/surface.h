@@ -108,6 +108,13 @@ inline constexpr double kMinVoxelSize = 2e-5;
 /// blob alone would otherwise span more than a million voxels), and at least kMinVoxelSize.
 [[nodiscard]] double minimumVoxelSize(double particleSize, const SurfaceSettings& settings = {});
 
+/// Whether `voxel` is below the floor `least` (kMinVoxelSize or minimumVoxelSize), with a
+/// millionth of slack: particle sizes are single precision (4e-5 is 3.9999999e-5, half of
+/// it 1.99999995e-5), and without it the documented bound itself was refused.
+[[nodiscard]] constexpr bool belowVoxelFloor(double voxel, double least) {
+  return voxel < least * (1 - 1e-6);
+}
+
 /// The voxel fromParticles uses: settings.voxelSize, or particleSize / 2 when that is 0.
 [[nodiscard]] double voxelSizeFor(double particleSize, const SurfaceSettings& settings = {});
 
