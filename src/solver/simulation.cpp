@@ -19,6 +19,17 @@ namespace softsub::solver {
 
 namespace {
 
+// The sweep's loops are built twice where GCC targets x86-64 without AVX2 (as the pair
+// kernels are, fluid/pair_forces.cpp): for the baseline and for AVX2, which the pair
+// kernels' choice selects (fluid::simdInUse). No FMA in the AVX2 copy (its target is
+// AVX2 alone, and the solver is built without contraction), so both do the same IEEE
+// operations per particle: the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
+#define SOFTSUB_SWEEP_AVX2 1
+#else
+#define SOFTSUB_SWEEP_AVX2 0
+#endif
+
 // Per-particle stages run over fixed blocks of slots in parallel: each slot is written by
 // one task only and with the same arithmetic whatever the thread count.
 constexpr std::size_t kBlock = 4096;
@@ -68,7 +79,8 @@ struct Top2 {
   // pattern, one vectorised loop; only a run with one above the second largest so far
   // (as unsigned integers: any NaN, of either sign, counts as above) goes through add(),
   // for which the others change nothing. The same pair as adding every slot.
-  void addDisplacements(const ParticleStore& s, const float* ref, std::size_t b, std::size_t e) {
+  [[gnu::always_inline]] void addDisplacements(const ParticleStore& s, const float* ref, std::size_t b,
+                                               std::size_t e) {
     const std::size_t n = s.size();
     const float* __restrict px = s.px.data();
     const float* __restrict py = s.py.data();
@@ -281,8 +293,8 @@ void Simulation::stepBodies(double dt) {
 namespace {
 // scanSpeeds' loop; inv(i) is slot i's 1 / reach.
 template <class Inv>
-void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv, std::uint32_t& okOut,
-               std::uint32_t& topOut) {
+[[gnu::always_inline]] inline void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv,
+                                             std::uint32_t& okOut, std::uint32_t& topOut) {
   const float *px = s.px.data(), *py = s.py.data(), *pz = s.pz.data();
   const float *vx = s.vx.data(), *vy = s.vy.data(), *vz = s.vz.data();
   std::uint32_t ok = 1, top = topOut;
@@ -300,6 +312,23 @@ void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv, st
   okOut = ok;
   topOut = top;
 }
+
+// Simulation::scanSpeeds for a reach all materials share (uniform: invReach[0]) or per
+// material.
+[[gnu::always_inline]] inline void scanSpeedsOf(const ParticleStore& s, std::size_t b, std::size_t e,
+                                                bool uniform, const float* invReach, float& speed2,
+                                                bool& finite) {
+  std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
+  if (uniform) {
+    const float r = invReach[0];
+    scanRange(s, b, e, [r](std::size_t) { return r; }, ok, top);
+  } else {
+    const std::uint16_t* material = s.material.data();
+    scanRange(s, b, e, [=](std::size_t i) { return invReach[material[i]]; }, ok, top);
+  }
+  speed2 = std::bit_cast<float>(top);
+  finite = finite && ok != 0;
+}
 }  // namespace
 
 // checkFinite()'s scan of slots [b, e): `finite` false if a position or velocity there is
@@ -308,18 +337,9 @@ void scanRange(const ParticleStore& s, std::size_t b, std::size_t e, Inv inv, st
 // speeds are >= 0, and the bit patterns of floats >= 0 order as the floats do; only a
 // non-finite velocity gives a NaN, which may then come out as the speed, with `finite`
 // false), and a reach that all materials share is read once instead of per particle.
-void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2, bool& finite) const {
-  std::uint32_t ok = 1, top = std::bit_cast<std::uint32_t>(speed2);
-  if (uniformReach_) {
-    const float r = invReach_.front();
-    scanRange(s, b, e, [r](std::size_t) { return r; }, ok, top);
-  } else {
-    const float* invReach = invReach_.data();
-    const std::uint16_t* material = s.material.data();
-    scanRange(s, b, e, [=](std::size_t i) { return invReach[material[i]]; }, ok, top);
-  }
-  speed2 = std::bit_cast<float>(top);
-  finite = finite && ok != 0;
+void Simulation::scanSpeeds(const ParticleStore& s, std::size_t b, std::size_t e, float& speed2,
+                            bool& finite) const {
+  scanSpeedsOf(s, b, e, uniformReach_, invReach_.data(), speed2, finite);
 }
 
 // What the per-particle stages do to one particle, written once for the passes that run
@@ -339,7 +359,7 @@ struct Simulation::ParticleOps {
   // v += (f / m + g) h for slots [from, to). Axis by axis through unaliased pointers, so that
   // each loop vectorises (one loop over six arrays did not: too many alias checks); the
   // inverse masses are gathered into a buffer first unless every material shares one.
-  void kicks(std::size_t from, std::size_t to, float h) const {
+  [[gnu::always_inline]] void kicks(std::size_t from, std::size_t to, float h) const {
     const float g[3] = {gx, gy, gz};
     float* const v[3] = {s.vx.data(), s.vy.data(), s.vz.data()};
     const Force* const f = s.f.data();
@@ -366,17 +386,18 @@ struct Simulation::ParticleOps {
     for (std::size_t k = 0; k < m; ++k) v[k] += (f[k].*kAxis * im[k] + g) * h;
   }
   // x += v dt for slots [from, to), axis by axis as the kick.
-  void drifts(std::size_t from, std::size_t to, float dt) const {
+  [[gnu::always_inline]] void drifts(std::size_t from, std::size_t to, float dt) const {
     driftAxis(s.px.data() + from, s.vx.data() + from, dt, to - from);
     driftAxis(s.py.data() + from, s.vy.data() + from, dt, to - from);
     driftAxis(s.pz.data() + from, s.vz.data() + from, dt, to - from);
   }
-  static void driftAxis(float* __restrict p, const float* __restrict v, float dt, std::size_t m) {
+  [[gnu::always_inline]] static void driftAxis(float* __restrict p, const float* __restrict v, float dt,
+                                               std::size_t m) {
     for (std::size_t k = 0; k < m; ++k) p[k] += v[k] * dt;
   }
   // walls(i) for slots [from, to): run by run, a vectorised test against the bounds that
   // hold for every material skips the runs where no centre is near a wall.
-  void wallsOf(std::size_t from, std::size_t to) const {
+  [[gnu::always_inline]] void wallsOf(std::size_t from, std::size_t to) const {
     const float* const p[3] = {s.px.data(), s.py.data(), s.pz.data()};
     for (std::size_t r = from; r < to; r += kRun) {
       const std::size_t m = std::min(kRun, to - r);
@@ -479,44 +500,85 @@ void Simulation::applyWalls() {
   forEachRange(state_.particles.size(), [&](std::size_t b, std::size_t e) { ops.wallsOf(b, e); });
 }
 
+namespace {
+// What sweep() does to each block, and the findings it adds to.
+struct SweepPlan {
+  float h, dt;
+  bool explicitEuler, walls, displacement, check;
+  const float* ref;   // the list's reference positions (displacement)
+  bool uniformReach;  // scanSpeedsOf
+  const float* invReach;
+};
+struct SweepFound {
+  Top2 top;
+  float speed2 = 0;
+  bool finite = true;
+};
+// One block: stage by stage (at most kBlock slots, in cache from the first stage on), so
+// that the kick and the drift stay vectorised loops. Ops: Simulation::ParticleOps.
+template <class Ops>
+[[gnu::always_inline]] inline void sweepBlockBody(const Ops& ops, const SweepPlan& p, std::size_t b,
+                                                  std::size_t e, SweepFound& f) {
+  if (p.explicitEuler) {
+    ops.drifts(b, e, p.dt);
+    ops.kicks(b, e, p.h);
+  } else {
+    ops.kicks(b, e, p.h);
+    ops.drifts(b, e, p.dt);
+  }
+  if (p.walls) ops.wallsOf(b, e);
+  if (p.displacement) f.top.addDisplacements(ops.s, p.ref, b, e);
+  if (p.check) scanSpeedsOf(ops.s, b, e, p.uniformReach, p.invReach, f.speed2, f.finite);
+}
+template <class Ops>
+void sweepBlockBaseline(const Ops& ops, const SweepPlan& p, std::size_t b, std::size_t e, SweepFound& f) {
+  sweepBlockBody(ops, p, b, e, f);
+}
+#if SOFTSUB_SWEEP_AVX2
+template <class Ops>
+__attribute__((target("avx2"))) void sweepBlockAvx2(const Ops& ops, const SweepPlan& p, std::size_t b,
+                                                    std::size_t e, SweepFound& f) {
+  sweepBlockBody(ops, p, b, e, f);
+}
+#endif
+}  // namespace
+
 void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
   const ParticleOps ops = particleOps();
-  const ParticleStore& s = state_.particles;
-  const std::size_t n = s.size();
-  const bool walls = model_.container.has_value(), displacement = listValid_;
-  struct Found {
-    Top2 top;
-    Extremes extremes;
-  };
-  const Found found = tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, n, kBlock), Found{},
-      [&](const tbb::blocked_range<std::size_t>& r, Found f) {
-        // Stage by stage over the block (at most kBlock slots, in cache from the first
-        // stage on), so that the kick and the drift stay vectorised loops.
-        const std::size_t b = r.begin(), e = r.end();
-        if (explicitEuler) {
-          ops.drifts(b, e, dt);
-          ops.kicks(b, e, h);
-        } else {
-          ops.kicks(b, e, h);
-          ops.drifts(b, e, dt);
+  const SweepPlan plan{h,
+                       dt,
+                       explicitEuler,
+                       model_.container.has_value(),
+                       listValid_,
+                       check,
+                       ref_,
+                       uniformReach_,
+                       invReach_.data()};
+  const bool avx2 = SOFTSUB_SWEEP_AVX2 && fluid::simdInUse() == fluid::Simd::Avx2;
+  const SweepFound found = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, state_.particles.size(), kBlock), SweepFound{},
+      [&](const tbb::blocked_range<std::size_t>& r, SweepFound f) {
+#if SOFTSUB_SWEEP_AVX2
+        if (avx2) {
+          sweepBlockAvx2(ops, plan, r.begin(), r.end(), f);
+          return f;
         }
-        if (walls) ops.wallsOf(b, e);
-        if (displacement) f.top.addDisplacements(s, ref_, b, e);
-        float speed2 = 0;
-        bool finite = true;
-        if (check) scanSpeeds(s, b, e, speed2, finite);
-        f.extremes = joinExtremes(f.extremes, Extremes{std::sqrt(speed2), 0, finite});
+#endif
+        sweepBlockBaseline(ops, plan, r.begin(), r.end(), f);
         return f;
       },
-      [](Found a, const Found& b) {
+      [](SweepFound a, const SweepFound& b) {
         a.top.join(b.top);
-        a.extremes = joinExtremes(a.extremes, b.extremes);
+        a.speed2 = std::max(a.speed2, b.speed2);
+        a.finite = a.finite && b.finite;
         return a;
       });
-  knownStale_ = displacement ? (std::sqrt(found.top.first) + std::sqrt(found.top.second) < skin_ ? 0 : 1) : 1;
+  (void)avx2;
+  knownStale_ =
+      plan.displacement ? (std::sqrt(found.top.first) + std::sqrt(found.top.second) < skin_ ? 0 : 1) : 1;
   fastestSlot_ = found.top.slot;
-  if (check) checkFinite(&found.extremes);
+  const Extremes extremes{std::sqrt(found.speed2), 0, found.finite};
+  if (check) checkFinite(&extremes);
 }
 
 // The integrators, from kicks (velocity) and drifts (position):
