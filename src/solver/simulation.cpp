@@ -22,7 +22,7 @@ namespace {
 // The sweep's loops are built twice where GCC targets x86-64 without AVX2 (as the pair
 // kernels are, fluid/pair_forces.cpp): for the baseline and for AVX2, which the pair
 // kernels' choice selects (fluid::simdInUse). No FMA in the AVX2 copy (its target is
-// AVX2 alone, and the solver is built without contraction), so both do the same IEEE
+// AVX2 alone, and this file is built with -ffp-contract=off), so both do the same IEEE
 // operations per particle: the same bits.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
 #define SOFTSUB_SWEEP_AVX2 1

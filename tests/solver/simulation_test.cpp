@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstring>
+#include <limits>
+#include <string>
 
 #include "core/error.h"
 #include "fluid/pair_forces.h"
@@ -12,6 +13,7 @@
 #include "solver/simulation.h"
 #include "support/force_check.h"
 #include "support/scenarios.h"
+#include "support/state_bytes.h"
 
 namespace softsub::solver {
 namespace {
@@ -34,9 +36,9 @@ Model twoFluids() {
   return m;
 }
 
-State cloudState(std::size_t n, std::uint32_t seed, Model& m) {
+State cloudState(std::size_t n, std::uint32_t seed, Model& m, float half = 6) {
   State s;
-  s.particles = scenarios::randomCloud(n, -6, 6, 1.5f, 2, seed);
+  s.particles = scenarios::randomCloud(n, -half, half, 1.5f, 2, seed);
   std::uint32_t counts[2] = {0, 0};
   for (std::size_t i = 0; i < s.particles.size(); ++i) ++counts[s.particles.material[i]];
   m.fluids[0].count = counts[0];
@@ -418,6 +420,55 @@ TEST(Simulation, TheSpeedCheckFollowsItsLimitAndCanBeTurnedOff) {
   EXPECT_NO_THROW(Simulation(m, s).checkFinite());
   s.particles.vy[0] = std::numeric_limits<float>::infinity();
   EXPECT_THROW(Simulation(m, s).checkFinite(), BlowUpError);
+}
+
+// The sweep is built twice (baseline and AVX2, chosen with the pair kernels' copy,
+// fluid::useSimd); both must give the same bits and the same verdicts for every
+// integrator: two materials of different masses and reaches, gravity and closed walls
+// from the first substep, 5,000 particles (two of the sweep's blocks, a partial run of
+// 8), list rebuilds; then a speed limit that each copy must trip at the same substep,
+// naming the same particle (the check reads the sweep's own scan).
+TEST(Sweep, BaselineAndAvx2CopiesAreBitwiseTheSame) {
+  struct Restore {
+    fluid::Simd simd = fluid::simdInUse();
+    ~Restore() { fluid::useSimd(simd); }
+  } const restore;
+  if (!fluid::useSimd(fluid::Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
+  for (const Integrator integrator :
+       {Integrator::SymplecticEuler, Integrator::ExplicitEuler, Integrator::VelocityVerlet}) {
+    Model m = twoFluids();
+    m.integrator = integrator;
+    m.gravity = Vec3(0, -9.81, 0);
+    Container box;
+    box.lo = {-8.5, -8.5, -8.5};
+    box.hi = {8.5, 8.5, 8.5};
+    box.closed = true;
+    m.container = box;
+    const State s = cloudState(5000, 17, m, 8.0f);
+    ASSERT_NE(std::sqrt(m.table.rowCutoff2(0)), std::sqrt(m.table.rowCutoff2(1)));  // two reaches
+    Simulation baseline(m, s), avx2(m, s);
+    for (int k = 0; k < 96; ++k) {
+      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Baseline));
+      baseline.step();
+      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Avx2));
+      avx2.step();
+      ASSERT_TRUE(scenarios::stateBytes(baseline, true) == scenarios::stateBytes(avx2, true))
+          << static_cast<int>(integrator) << ": differ after substep " << k + 1;
+    }
+    EXPECT_GT(avx2.listBuilds(), 1);
+    // A limit above the first state's fastest travel, which gravity and the pairs soon pass.
+    m.maxTravelPerSubstep = 1.2 * Simulation(m, s).travelPerSubstep();
+    Simulation limitedBaseline(m, s), limitedAvx2(m, s);
+    std::string onBaseline, onAvx2;
+    for (int f = 0; f < 24 && onBaseline.empty() && onAvx2.empty(); ++f) {
+      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Baseline));
+      onBaseline = blowUpMessage(limitedBaseline);
+      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Avx2));
+      onAvx2 = blowUpMessage(limitedAvx2);
+    }
+    EXPECT_NE(onAvx2.find("speed is"), std::string::npos) << static_cast<int>(integrator) << ": " << onAvx2;
+    EXPECT_EQ(onAvx2, onBaseline) << static_cast<int>(integrator);
+  }
 }
 
 TEST(FrameLoop, ObserversSeeFrameZeroThenEveryFrameAndStopEarly) {

@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "fluid/pair_forces.h"
 #include "scene/compile.h"
 #include "scene/reader.h"
 #include "solver/simulation.h"
@@ -166,31 +165,6 @@ TEST(Sweep, IsBitwiseTheSameAsTheStagesOneAfterAnother) {
     EXPECT_EQ(swept.listBuilds(), staged.listBuilds());
     EXPECT_GT(swept.listBuilds(), 1);  // the stale test said "rebuild" at least once
   }
-}
-
-// The sweep is built twice (baseline and AVX2, chosen with the pair kernels' copy,
-// fluid::useSimd); both must give the same bits for every integrator: two materials of
-// different masses, walls, list rebuilds. The copy is switched before each substep of
-// each run, so one simulation runs the baseline throughout and the other AVX2.
-TEST(Sweep, BaselineAndAvx2CopiesAreBitwiseTheSame) {
-  const fluid::Simd was = fluid::simdInUse();
-  if (!fluid::useSimd(fluid::Simd::Avx2)) GTEST_SKIP() << "no AVX2 copy in this build or on this CPU";
-  for (const Integrator integrator :
-       {Integrator::SymplecticEuler, Integrator::ExplicitEuler, Integrator::VelocityVerlet}) {
-    scene::Compiled c = scene::compile(scene::readSceneFile(example("two-fluids.scene")));
-    c.model.integrator = integrator;
-    Simulation baseline(c.model, c.state), avx2(c.model, std::move(c.state));
-    for (int k = 0; k < 48; ++k) {
-      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Baseline));
-      baseline.step();
-      ASSERT_TRUE(fluid::useSimd(fluid::Simd::Avx2));
-      avx2.step();
-      ASSERT_TRUE(stateBytes(baseline, true) == stateBytes(avx2, true))
-          << static_cast<int>(integrator) << ": differ after substep " << k + 1;
-    }
-    EXPECT_GT(avx2.listBuilds(), 1);
-  }
-  fluid::useSimd(was);
 }
 
 TEST(PinnedState, TwoFluidsAfterTwelveFramesHasItsRecordedHash) {
