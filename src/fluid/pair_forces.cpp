@@ -19,12 +19,10 @@
 #endif
 
 // A second copy of the hot loops for AVX2 (chosen at run time) where the compiler can
-// make one and the build does not already target AVX2 for everything (SOFTSUB_NATIVE).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
-#define SOFTSUB_AVX2_CLONE 1
+// make one and the build does not already target AVX2 for everything (SOFTSUB_AVX2_COPY).
+#if SOFTSUB_AVX2_COPY
 #define SOFTSUB_AVX2_ONLY(call) call
 #else
-#define SOFTSUB_AVX2_CLONE 0
 #define SOFTSUB_AVX2_ONLY(call) (void)0
 #endif
 
@@ -46,7 +44,7 @@ namespace baseline {
 #undef SOFTSUB_KERNEL_AVX
 }  // namespace baseline
 
-#if SOFTSUB_AVX2_CLONE
+#if SOFTSUB_AVX2_COPY
 // The same source for AVX2 and FMA: 8-wide passes (GCC 12 emits no gathers here), the same
 // IEEE operations in the same order, so the same bits as the baseline copy (tested). FMA
 // only where the source asks for one (fused() in pair_kernels.inl); the file is built
@@ -63,7 +61,7 @@ namespace avx2 {
 #endif
 
 bool cpuHasAvx2() {
-#if SOFTSUB_AVX2_CLONE
+#if SOFTSUB_AVX2_COPY
   return __builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("fma") != 0;
 #else
   return false;

@@ -242,6 +242,14 @@ void accumulatePairForces(const neighbors::CellGrid& grid, const forces::Interac
 /// operations in the same order, fused multiply-adds only where the source writes one:
 /// the lists and forces are bitwise the same (tests/fluid), only the speed differs.
 enum class Simd { Baseline, Avx2 };
+/// 1 where this build makes the AVX2 copies of its hot loops (GCC on x86-64, the build not
+/// already targeting AVX2 everywhere, as SOFTSUB_NATIVE does): the pair list build and
+/// kernel here, and the solver's sweep (solver/simulation.cpp), both chosen by simdInUse().
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
+#define SOFTSUB_AVX2_COPY 1
+#else
+#define SOFTSUB_AVX2_COPY 0
+#endif
 /// The copy in use (Avx2 where the CPU has AVX2 and FMA and the build made that copy).
 [[nodiscard]] Simd simdInUse();
 /// Selects a copy for what follows (tests, benchmarks); false, and nothing changes,

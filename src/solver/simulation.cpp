@@ -19,17 +19,6 @@ namespace softsub::solver {
 
 namespace {
 
-// The sweep's loops are built twice where GCC targets x86-64 without AVX2 (as the pair
-// kernels are, fluid/pair_forces.cpp): for the baseline and for AVX2, which the pair
-// kernels' choice selects (fluid::simdInUse). No FMA in the AVX2 copy (its target is
-// AVX2 alone, and this file is built with -ffp-contract=off), so both do the same IEEE
-// operations per particle: the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__AVX2__)
-#define SOFTSUB_SWEEP_AVX2 1
-#else
-#define SOFTSUB_SWEEP_AVX2 0
-#endif
-
 // Per-particle stages run over fixed blocks of slots in parallel: each slot is written by
 // one task only and with the same arithmetic whatever the thread count.
 constexpr std::size_t kBlock = 4096;
@@ -530,17 +519,26 @@ template <class Ops>
   if (p.displacement) f.top.addDisplacements(ops.s, p.ref, b, e);
   if (p.check) scanSpeedsOf(ops.s, b, e, p.uniformReach, p.invReach, f.speed2, f.finite);
 }
-template <class Ops>
-void sweepBlockBaseline(const Ops& ops, const SweepPlan& p, std::size_t b, std::size_t e, SweepFound& f) {
-  sweepBlockBody(ops, p, b, e, f);
-}
-#if SOFTSUB_SWEEP_AVX2
+// The body is built twice where the pair kernels are (SOFTSUB_AVX2_COPY): for the
+// baseline and for AVX2, the copy the kernels' choice selects (fluid::simdInUse). No FMA
+// in the AVX2 copy (its target is AVX2 alone, and this file is built with
+// -ffp-contract=off), so both do the same IEEE operations per particle: the same bits.
+#if SOFTSUB_AVX2_COPY
 template <class Ops>
 __attribute__((target("avx2"))) void sweepBlockAvx2(const Ops& ops, const SweepPlan& p, std::size_t b,
                                                     std::size_t e, SweepFound& f) {
   sweepBlockBody(ops, p, b, e, f);
 }
 #endif
+template <class Ops>
+void sweepBlock(bool avx2, const Ops& ops, const SweepPlan& p, std::size_t b, std::size_t e, SweepFound& f) {
+#if SOFTSUB_AVX2_COPY
+  if (avx2) return sweepBlockAvx2(ops, p, b, e, f);
+#else
+  (void)avx2;
+#endif
+  sweepBlockBody(ops, p, b, e, f);
+}
 }  // namespace
 
 void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
@@ -554,17 +552,11 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
                        ref_,
                        uniformReach_,
                        invReach_.data()};
-  const bool avx2 = SOFTSUB_SWEEP_AVX2 && fluid::simdInUse() == fluid::Simd::Avx2;
+  const bool avx2 = fluid::simdInUse() == fluid::Simd::Avx2;
   const SweepFound found = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, state_.particles.size(), kBlock), SweepFound{},
       [&](const tbb::blocked_range<std::size_t>& r, SweepFound f) {
-#if SOFTSUB_SWEEP_AVX2
-        if (avx2) {
-          sweepBlockAvx2(ops, plan, r.begin(), r.end(), f);
-          return f;
-        }
-#endif
-        sweepBlockBaseline(ops, plan, r.begin(), r.end(), f);
+        sweepBlock(avx2, ops, plan, r.begin(), r.end(), f);
         return f;
       },
       [](SweepFound a, const SweepFound& b) {
@@ -573,7 +565,6 @@ void Simulation::sweep(float h, float dt, bool explicitEuler, bool check) {
         a.finite = a.finite && b.finite;
         return a;
       });
-  (void)avx2;
   knownStale_ =
       plan.displacement ? (std::sqrt(found.top.first) + std::sqrt(found.top.second) < skin_ ? 0 : 1) : 1;
   fastestSlot_ = found.top.slot;
