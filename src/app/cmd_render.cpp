@@ -191,6 +191,8 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
 }
 
 int renderCommand(const RenderOptions& o) {
+  // From the start, as run's: a stop while the scene loads ends with exit code 130.
+  const std::atomic<bool>& stop = installStopHandlers();
   checkSize(o);
   const FrameRange range = parseFrameRange(o.frames, "--frames");
   if (surfaceOptionsGiven(o.surfaceSettings) && !o.surface)
@@ -248,11 +250,15 @@ int renderCommand(const RenderOptions& o) {
     ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
     for (std::size_t i = 0; i < rec.frameCount(); ++i) {
       if (!range.contains(rec.frameNumber(i))) continue;
-      if (stopSignal() != 0) break;
+      if (stop.load()) break;
       pictures->onFrame(rec.load(i));
       progress.update({rec.frameNumber(i), rec.frameNumber(rec.frameCount() - 1), 0, 0});
     }
     progress.end();
+    if (stop.load()) {
+      fmt::print(stderr, "interrupted: {} pictures written to {}\n", pictures->written, out.string());
+      return static_cast<int>(ExitCode::Interrupted);
+    }
   } else {
     LoadedScene loaded = loadScene(o.input, o.maxParticles);
     if (o.substeps) loaded.desc.simulation.substeps = static_cast<int>(*o.substeps);
@@ -284,7 +290,7 @@ int renderCommand(const RenderOptions& o) {
     FrameObserver* observers[] = {pictures};
     ProgressLine progress(chatty, lastFrame, particles);
     solver::FrameLoopHooks hooks;
-    hooks.stop = &installStopHandlers();
+    hooks.stop = &stop;
     hooks.onProgress = [&](const solver::FrameProgress& p) { progress.update(p); };
     const bool complete = solver::runFrames(sim, lastFrame, observers, hooks);
     progress.end();

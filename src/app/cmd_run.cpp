@@ -228,6 +228,10 @@ int runCommand(const RunOptions& o) {
     }
     return static_cast<int>(ExitCode::Ok);
   }
+  // The stop handlers from the start: Ctrl-C or SIGTERM while the scene loads ends the
+  // run before its first frame with the same exit code (130) as later (the Blender
+  // add-on's Stop sends SIGTERM whenever it is pressed).
+  const std::atomic<bool>& stop = installStopHandlers();
   // Everything is checked before any folder or file is created.
   const cache::Formats formats = checkCommandLine(o);
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
@@ -314,6 +318,12 @@ int runCommand(const RunOptions& o) {
   }
   if (!o.drawPerFrame.empty() && chatty)
     fmt::print(stderr, "note: -drawPerFrame applies to the viewer; run ignores it\n");
+  // Stopped while the scene was read and prepared: nothing on disk has changed yet.
+  if (stop.load()) {
+    fmt::print(stderr, "interrupted by {} before the first frame was complete (nothing written)\n",
+               stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT");
+    return static_cast<int>(ExitCode::Interrupted);
+  }
 
   // Resuming, the run in the folder is checked (a run with other settings is refused
   // before anything on disk changes) and restored; then a killed run's temporary files
@@ -373,7 +383,7 @@ int runCommand(const RunOptions& o) {
 
   ProgressLine progress(chatty, lastFrame, particles);
   solver::FrameLoopHooks hooks;
-  hooks.stop = &installStopHandlers();
+  hooks.stop = &stop;
   hooks.recordUpTo = o.stopRecordingAt;
   hooks.emitInitial = resumed.frame < 0;
   int fewestSubsteps = std::numeric_limits<int>::max(), mostSubsteps = 0;
@@ -445,8 +455,12 @@ int runCommand(const RunOptions& o) {
   progress.end();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!complete) {
-    fmt::print(stderr, "interrupted by {}: frame {} is the last complete frame ({})\n",
-               stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT", done.last, where);
+    const char* signal = stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
+    if (done.last < 0)
+      fmt::print(stderr, "interrupted by {} before the first frame was complete ({})\n", signal, where);
+    else
+      fmt::print(stderr, "interrupted by {}: frame {} is the last complete frame ({})\n", signal, done.last,
+                 where);
     return static_cast<int>(ExitCode::Interrupted);
   }
   std::string previewNote;

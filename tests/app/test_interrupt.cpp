@@ -58,6 +58,49 @@ TEST_P(Interrupt, FinishesTheCurrentFrameAndExits130) {
   EXPECT_EQ(cache::readSimFile(out / fmt::format("jelly-block.{:04}.sim", last)).frame.frame, last);
 }
 
+// Whether process `pid` has installed a handler for `sig` (SigCgt in /proc/PID/status).
+bool catches(pid_t pid, int sig) {
+  std::ifstream status(fmt::format("/proc/{}/status", pid));
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("SigCgt:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1)) & 1u;
+  return false;
+}
+
+// A stop asked for while the scene is still being read (a large one: 300,000 particles
+// written out) ends the run the same way, exit 130, before any frame is written; it
+// used to kill the process, whose handlers came only after the scene.
+TEST_P(Interrupt, WhileTheSceneLoadsExits130WithNothingWritten) {
+  const int sig = GetParam();
+  TempDir tmp;
+  {
+    std::ofstream scene(tmp / "big.scene");
+    scene << "<Scene "
+             "version=\"1\">\n<Simulation><Frames>3</Frames></Simulation>\n<Fluid><Name>goo</"
+             "Name><Particles>\n";
+    for (int i = 0; i < 300000; ++i)
+      scene << fmt::format("{} {} {}\n", (i % 100) * 0.1, (i / 100 % 100) * 0.1, (i / 10000) * 0.1);
+    scene << "</Particles></Fluid>\n</Scene>\n";
+  }
+  const fs::path out = tmp / "o";
+  const pid_t pid = spawnSoftsub(
+      {"run", "--formats", "sim", "--out", out.string(), (tmp / "big.scene").string()}, tmp / "err");
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!catches(pid, sig) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  ASSERT_EQ(::kill(pid, sig), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string err = readFile(tmp / "err");
+  EXPECT_NE(err.find(fmt::format("interrupted by {} before the first frame was complete",
+                                 sig == SIGINT ? "SIGINT" : "SIGTERM")),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(out / "big.0000.sim"));
+}
+
 std::string signalName(const ::testing::TestParamInfo<int>& p) {
   return p.param == SIGINT ? "SIGINT" : "SIGTERM";
 }
