@@ -115,7 +115,7 @@ void BM_PairKernel(benchmark::State& st) {
   ParticleStore& s = c.store;
   for (auto _ : st) {
     std::fill(s.f.begin(), s.f.end(), Force{});
-    fluid::accumulatePairForces(list, c.table, s);
+    fluid::accumulatePairForces(list, c.table, s, fluid::ForcesBefore::Zero);
     benchmark::DoNotOptimize(s.f.data());
   }
   st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),

@@ -34,6 +34,10 @@ struct ListOptions {
   bool closedForm = true;
 };
 
+/// What store.f holds before accumulatePairForces adds the pair forces to it: anything,
+/// or zero in every component (which lets a list of packed layers run without phases).
+enum class ForcesBefore { Any, Zero };
+
 class PairList {
  public:
   PairList();
@@ -201,6 +205,10 @@ class PairList {
   /// a layer's slot i lists j in the same layer or the next, so the layers of one phase
   /// may add forces to their i and j in parallel without sharing a slot.
   [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& phases() const { return phases_; }
+  /// Whether every layer is packed, its sums reaching no further than the next layer's
+  /// slots: accumulatePairForces(..., ForcesBefore::Zero) then runs the layers without
+  /// phases.
+  [[nodiscard]] bool packedOnly() const { return packedOnly_; }
 
  private:
   struct Scratch;
@@ -208,9 +216,11 @@ class PairList {
              float skin, const ListOptions& options, ParticleStore* forces);
   std::vector<Layer> layers_;
   std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
-  friend void accumulatePairForces(const PairList&, const forces::InteractionTable&, ParticleStore&);
+  friend void accumulatePairForces(const PairList&, const forces::InteractionTable&, ParticleStore&,
+                                   ForcesBefore);
   std::vector<std::vector<std::uint32_t>> phases_;
   bool grouped_ = false;
+  bool packedOnly_ = false;     // every layer packed, its sums within its own and the next layer
   std::vector<float> rowCut2_;  // each material row's squared list radius
   std::vector<std::uint32_t> firstCell_;  // each layer's first cell (build scratch)
   std::unique_ptr<Scratch> scratch_;
@@ -224,8 +234,11 @@ class PairList {
 /// per pair, no virtual call, no allocation once warmed up. Runs the list's layers in
 /// parallel phase by phase; every force is summed in the same order whatever the number
 /// of threads, so the result is bitwise the same for any thread count.
-void accumulatePairForces(const PairList& list, const forces::InteractionTable& table,
-                          ParticleStore& store);
+/// With ForcesBefore::Zero (the caller has set every store.f to zero, as the solver does
+/// before each evaluation) and a list of packed layers only (the Lennard-Jones liquid),
+/// the layers run all at once instead, with the same bits (see pair_forces.cpp).
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& store,
+                          ForcesBefore before = ForcesBefore::Any);
 
 /// Adds to store.f the forces of every pair closer than its cutoff, each pair once
 /// (Newton's third law: what i gets, j gets with the opposite sign):

@@ -239,7 +239,7 @@ void Simulation::computeForces() {
       list_.build(grid_, model_.table, s, skin_, listOptions_);
       listRigidPairs();
     }
-    fluid::accumulatePairForces(list_, model_.table, s);
+    fluid::accumulatePairForces(list_, model_.table, s, fluid::ForcesBefore::Zero);  // zeroed above
   }
   if (rebuild) {
     holdReference(s.px, s.py, s.pz);

@@ -720,6 +720,55 @@ TEST(ClosedForm, SumsAreBitwiseTheSameOnEveryThreadCountAndCopy) {
   EXPECT_GE(checked, 3);
 }
 
+// The layers of a packed list run all at once when the forces start from zero
+// (ForcesBefore::Zero): each adds its sums to the store under its two layers' locks,
+// and two additions to zero commute, so the result is the phases' to the bit on any
+// thread count, however the threads interleave (repeated to give a race its chances;
+// without the locks it failed once in a few runs: neighbours seldom finish together).
+TEST(ClosedForm, LayersWithoutPhasesGiveThePhasesBits) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable(1.0, 2.0);
+  // An fcc-like jittered lattice of 16,384 atoms at the LJ liquid's density: 8 to 9
+  // layers of about 2,000 atoms.
+  ParticleStore s = scenarios::randomCloud(16384, 0, 1, 0, 1, 31);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const float q = static_cast<float>(i);
+    s.px[i] = 1.06f * (std::fmod(q, 32.0f) + 0.05f * std::sin(q));
+    s.py[i] = 1.06f * (std::fmod(std::floor(q / 32.0f), 32.0f) + 0.05f * std::cos(q));
+    s.pz[i] = 1.06f * (std::floor(q / 1024.0f) + 0.05f * std::sin(2 * q));
+  }
+  const float skin = 0.3f;
+  neighbors::CellGrid grid;
+  grid.rebuild(s, static_cast<float>(table.maxCutoff()) + skin);
+  ASSERT_GT(grid.layers().size(), 4u);
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    PairList list;
+    list.build(grid, table, s, skin);
+    ASSERT_TRUE(list.packedOnly());
+    ParticleStore phases = s;
+    zeroForces(phases);
+    accumulatePairForces(list, table, phases);
+    ParticleStore a = s;
+    for (const std::size_t threads : {1u, 2u, 3u}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      // The baseline copy's fused multiply-adds are library calls: few rounds there.
+      const int rounds = threads == 1 ? 1 : simd == Simd::Avx2 ? 100 : 3;
+      for (int round = 0; round < rounds; ++round) {
+        zeroForces(a);
+        accumulatePairForces(list, table, a, ForcesBefore::Zero);
+        ASSERT_EQ(a.f, phases.f) << threads << " threads, round " << round;
+      }
+    }
+  }
+  // A list that is not packed only (the table kernel) keeps the phases.
+  PairList plain;
+  ListOptions options;
+  options.closedForm = false;
+  plain.build(grid, table, s, skin, options);
+  EXPECT_FALSE(plain.packedOnly());
+}
+
 // Every listed pair (i, j), i < j, sorted: a list's pairs as a set.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> pairSet(const PairList& list) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
