@@ -38,6 +38,26 @@ void checkSurfaceOptions(const surface::SurfaceSettings& s, const FrameSnapshot&
   for (const FluidSnapshot& f : frame.fluids) {
     const double least = surface::minimumVoxelSize(f.particleSize, s);
     const double voxel = surface::voxelSizeFor(f.particleSize, s);
+    if (least > surface::kMaxVoxelSize)
+      throw InputError(
+          {source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
+          fmt::format("{:g} is too large for surfaces: the finest voxel its blob radius allows ({:g}) is "
+                      "above the largest the surfaces' grid takes ({:g})",
+                      f.particleSize, least, surface::kMaxVoxelSize),
+          fmt::format("ParticleSize <= {:g} with surfaces at blob radius {:g}",
+                      surface::kMaxVoxelSize / (least / f.particleSize), s.radiusScale));
+    if (s.voxelSize > surface::kMaxVoxelSize)
+      throw InputError({"command line", 0, "--voxel-size"},
+                       fmt::format("{:g} is above the largest voxel the surfaces' grid takes", s.voxelSize),
+                       fmt::format("at most {:g}", surface::kMaxVoxelSize));
+    if (s.voxelSize <= 0.0 && voxel > surface::kMaxVoxelSize)
+      throw InputError(
+          {source, 0, fmt::format("Fluid '{}'/ParticleSize", f.name)},
+          fmt::format("{:g} is too large for surfaces: the default voxel, half of it ({:g}), is above "
+                      "the largest the surfaces' grid takes",
+                      f.particleSize, voxel),
+          fmt::format("ParticleSize <= {:g} with surfaces, or --voxel-size {:g} to {:g}",
+                      2.0 * surface::kMaxVoxelSize, least, surface::kMaxVoxelSize));
     if (s.voxelSize > 0.0 && s.voxelSize < least)
       throw InputError({"command line", 0, "--voxel-size"},
                        fmt::format("{:g} is too small for fluid '{}' (particle size {:g})", s.voxelSize, f.name,

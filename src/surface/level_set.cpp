@@ -487,6 +487,11 @@ LevelSet LevelSet::fromParticles(std::span<const float> xyz, double particleSize
   if (belowVoxelFloor(impl->voxel, kMinVoxelSize))
     throw std::invalid_argument("surface: voxel size below the smallest the grid takes (allowed: voxel >= " +
                                 fmt::format("{:g}", kMinVoxelSize) + ")");
+  if (!(impl->voxel <= kMaxVoxelSize))
+    throw std::invalid_argument(
+        fmt::format("surface: voxel size {:g} above the largest the grid takes (allowed: "
+                    "voxel <= {:g})",
+                    impl->voxel, kMaxVoxelSize));
   const double vx = impl->voxel;
   const double radius = s.radiusScale * particleSize;  // blob radius
   auto threshold = static_cast<float>(s.threshold);

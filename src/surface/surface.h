@@ -67,8 +67,8 @@ class LevelSet {
   /// The blobby field of the particles (xyz triples, scene units) of diameter
   /// particleSize, as a level set of its iso surface. Non-finite positions are skipped.
   /// Throws std::invalid_argument for a non-positive particle size or settings out of
-  /// range (a voxel below minimumVoxelSize), or positions too far from the origin for the
-  /// voxel grid (beyond gridReach). Callers check these first, with their own errors.
+  /// range (a voxel below minimumVoxelSize or above kMaxVoxelSize), or positions too far from the origin for
+  /// the voxel grid (beyond gridReach). Callers check these first, with their own errors.
   static LevelSet fromParticles(std::span<const float> positionsXYZ, double particleSize,
                                 const SurfaceSettings& settings = {});
   /// Reads the first float grid of a .vdb file (throws softsub::IoError if it cannot).
@@ -103,6 +103,11 @@ class LevelSet {
 /// The smallest voxel edge at all, in scene units: OpenVDB refuses a transform whose scale
 /// cubed is below 3e-15 (a voxel below 1.45e-5); this rounds that up.
 inline constexpr double kMinVoxelSize = 2e-5;
+
+/// The largest voxel edge, in scene units: far beyond any scene, and it keeps the level
+/// set's band (a few voxels) and its distances finite in single precision (a voxel of
+/// 1.5e38, from a ParticleSize of 3e38, made OpenVDB's mesh-to-volume spin forever).
+inline constexpr double kMaxVoxelSize = 1e30;
 
 /// The smallest voxel fromParticles accepts for this particle size: blob radius / 64 (one
 /// blob alone would otherwise span more than a million voxels), and at least kMinVoxelSize.

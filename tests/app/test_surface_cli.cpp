@@ -167,6 +167,34 @@ TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
   EXPECT_TRUE(fs::exists(tmp / "m/mesh/a.0002.obj"));
 }
 
+// A ParticleSize of 3e38 (in the schema's range) made `--formats vdb` spin forever in
+// OpenVDB (a black-box fuzzer found it): voxels above 1e30 are now refused first, and a
+// particle size no voxel fits is named as such.
+TEST(SurfaceCli, AParticleSizeTooLargeForTheGridIsRefusedFirst) {
+  TempDir tmp;
+  const fs::path scene = tmp / "huge.scene";
+  writeText(scene, oneFluid("3e38", "0 0 0  1e38 0 0"));
+  expectSurfacesRefusedFirst(tmp, scene, {"vdb", "mesh", "sim,mesh,vdb"},
+                             "huge.scene: Fluid 'a'/ParticleSize: 3e+38 is too large for surfaces",
+                             "ParticleSize <= 4.26667e+31 with surfaces at blob radius 1.5");
+  writeText(tmp / "big.scene", oneFluid("1e31", "0 0 0  1e31 0 0"));
+  expectSurfacesRefusedFirst(
+      tmp, tmp / "big.scene", {"vdb"},
+      "big.scene: Fluid 'a'/ParticleSize: 1e+31 is too large for surfaces: the default voxel",
+      "ParticleSize <= 2e+30 with surfaces, or --voxel-size 2.34375e+29 to 1e+30");
+  const RunResult voxel = runSoftsub("run --formats vdb --voxel-size 1e37 --out o big.scene", tmp.path());
+  EXPECT_EQ(voxel.code, 2) << voxel.err;
+  EXPECT_NE(
+      voxel.err.find("--voxel-size: 1e+37 is above the largest voxel the surfaces' grid takes (allowed: at "
+                     "most 1e+30)"),
+      std::string::npos)
+      << voxel.err;
+  const RunResult fits =
+      runSoftsub("run --frames 0 --formats vdb --voxel-size 1e30 --out v big.scene", tmp.path());
+  EXPECT_EQ(fits.code, 0) << fits.err;
+  EXPECT_TRUE(fs::exists(tmp / "v/vdb/a.0000.vdb"));
+}
+
 // A voxel coarser than the blob radius put the surface most of a voxel off, or left it
 // empty, with no word: now a warning says so (the run still writes what was asked).
 TEST(SurfaceCli, AVoxelCoarserThanTheBlobIsWarnedAbout) {

@@ -143,6 +143,16 @@ TEST(Surface, NonFiniteParticlesAreSkippedAndBadSettingsRejected) {
   EXPECT_THROW(ss::meshParticles(xyz, 1.0, bad), std::invalid_argument);
   const std::vector<float> far{0, 0, 0, 1e12f, 0, 0};
   EXPECT_THROW(ss::meshParticles(far, 1.0), std::invalid_argument);
+  // A voxel above kMaxVoxelSize (a ParticleSize of 3e38 made OpenVDB's mesh-to-volume
+  // spin forever); at the bound itself the level set is made and written.
+  EXPECT_THROW((void)ss::LevelSet::fromParticles(xyz, 3e38), std::invalid_argument);
+  ss::SurfaceSettings coarse;
+  coarse.voxelSize = ss::kMaxVoxelSize;
+  const std::vector<float> huge{0, 0, 0, 1e31f, 0, 0};
+  const ss::LevelSet atBound = ss::LevelSet::fromParticles(huge, 2 * ss::kMaxVoxelSize, coarse);
+  EXPECT_FALSE(atBound.empty());
+  EXPECT_TRUE(ss::isClosedAndOriented(atBound.mesh()));
+  EXPECT_GT(atBound.activeVoxelCount(), 0u);  // the signed distance grid (what .vdb holds)
 }
 
 TEST(Surface, FarApartParticlesStaySparse) {
