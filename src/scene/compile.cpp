@@ -148,6 +148,78 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
   return out;
 }
 
+// The seed's two global functions are absolute: cutoffs 1 (fluid/fluid) and 1.5
+// (fluid/object) and forces of 5, made for particles about a unit apart. A scene in
+// other units that leaves them out gets them at the wrong scale (a black-box review:
+// centimetre fluids 11 cm apart pushed each other to +-15 units, and a pair list whose
+// radius was the unit cutoff made the run 54 times slower; at a scale of 100 they pass
+// through each other). Warned once for each function, for the first pair of a fluid's
+// reach (its own function's cutoff) and the default's cutoff more than 5 times off the
+// seed's proportion (1.5 to 1 and 1.5 to 1.5).
+std::vector<std::string> defaultInteractionWarnings(const SceneDesc& d, const solver::Model& m) {
+  std::vector<std::string> out;
+  const InteractionsDesc seed;
+  const auto paired = [&](const std::string& a, const std::string& b) {
+    return std::any_of(d.interactions.pairs.begin(), d.interactions.pairs.end(),
+                       [&](const PairDesc& p) { return (p.a == a && p.b == b) || (p.a == b && p.b == a); });
+  };
+  // A fluid's reach: its own function's cutoff (a Pair naming it twice replaces it).
+  const auto reach = [&](std::size_t f) {
+    const FluidDesc& fluid = d.fluids[f];
+    for (const PairDesc& p : d.interactions.pairs)
+      if (p.a == fluid.name && p.b == fluid.name) return forces::cutoff(p.interaction.function);
+    return fluid.params.interactionDistance;
+  };
+  const auto offScale = [](double fluidReach, double defaultCutoff, double seedRatio) {
+    const double r = fluidReach / defaultCutoff / seedRatio;
+    return r < 0.2 || r > 5;
+  };
+  const auto has = [&](std::size_t f) { return f < m.fluids.size() && m.fluids[f].count > 0; };
+  if (d.interactions.fluidFluid == seed.fluidFluid) {
+    const double cut = forces::cutoff(seed.fluidFluid.function);
+    bool warned = false;
+    for (std::size_t a = 0; a < d.fluids.size() && !warned; ++a)
+      for (std::size_t b = a + 1; b < d.fluids.size() && !warned; ++b) {
+        if (!has(a) || !has(b) || paired(d.fluids[a].name, d.fluids[b].name)) continue;
+        const double r = std::max(reach(a), reach(b));
+        if (!offScale(r, cut, 1.5)) continue;
+        warned = true;
+        out.push_back(fmt::format(
+            "Interactions: fluids '{}' and '{}' (reach {:g}) meet through the default fluid/fluid function, "
+            "the "
+            "seed's Linear from 5 at contact to 0 at distance {:g} in absolute units: at this scale it {}; "
+            "give "
+            "<FluidFluid> (or a <Pair> for them) in the scene's units",
+            d.fluids[a].name, d.fluids[b].name, r, cut,
+            r < cut ? "pushes them apart from much further than they reach, and its long list slows the run"
+                    : "hardly acts, and they pass through each other"));
+      }
+  }
+  if (d.interactions.fluidObject == seed.fluidObject && !d.objects.empty()) {
+    const double cut = forces::cutoff(seed.fluidObject.function);
+    bool warned = false;
+    for (std::size_t f = 0; f < d.fluids.size() && !warned; ++f)
+      for (const ObjectDesc& o : d.objects) {
+        if (!has(f) || paired(d.fluids[f].name, o.name)) continue;
+        const double r = reach(f);
+        if (!offScale(r, cut, 1.0)) continue;
+        warned = true;
+        out.push_back(
+            fmt::format("Interactions: fluid '{}' (reach {:g}) meets object '{}' through the default "
+                        "fluid/object function, "
+                        "the seed's Linear from 5 at contact to 0 at distance {:g} in absolute units: at "
+                        "this scale it {}; "
+                        "give <FluidObject> (or a <Pair> for them) in the scene's units",
+                        d.fluids[f].name, r, o.name, cut,
+                        r < cut ? "pushes the fluid from much further than it reaches"
+                                : "hardly acts, and the fluid passes "
+                                  "through the object"));
+        break;
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 Compiled compile(const SceneDesc& desc) {
@@ -240,6 +312,7 @@ Compiled compile(const SceneDesc& desc) {
   }
   addBodies(desc, m, out.state, out.objectMeshes);
   out.warnings = initialStateWarnings(m, store, out.state);
+  for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
   return out;
 }
 

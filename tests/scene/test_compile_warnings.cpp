@@ -1,6 +1,8 @@
-// The warnings compile() gives about a scene's initial particles: a fluid's or an
-// object's outside the container, or a fluid particle exactly where another one is.
+// The warnings compile() gives about a scene's initial particles (a fluid's or an
+// object's outside the container, a fluid particle exactly where another one is, a
+// ParticleSize far from the spacing) and about default interactions at another scale.
 // Only a scene that has them gets them.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -112,6 +114,55 @@ TEST(CompileWarnings, NamesAParticleSizeFarFromTheSpacing) {
   ASSERT_EQ(tiny.size(), 1u);
   EXPECT_NE(tiny[0].find("ParticleSize 0.1 is 0.1 times the spacing of its particles (1)"), std::string::npos)
       << tiny[0];
+}
+
+// The seed's fluid/fluid and fluid/object defaults are absolute (cutoffs 1 and 1.5):
+// fluids in centimetres that leave them out are pushed apart from a unit away, fluids a
+// hundred times larger pass through each other; both are named once, and a scene that
+// gives the function (or a Pair) in its own units is not.
+TEST(CompileWarnings, NamesTheDefaultInteractionsAtAnotherScale) {
+  const auto fluid = [](const std::string& name, double s, double x) {
+    return fmt::format(
+        "<Fluid><Name>{}</Name><ParticleSize>{}</ParticleSize><FiniteDistance>{}</FiniteDistance>"
+        "<InteractionDistance>{}</InteractionDistance><Fill><Shape>box</Shape><Min>{} 0 0</Min>"
+        "<Max>{} {} {}</Max><Spacing>{}</Spacing></Fill></Fluid>",
+        name, s, s, 1.5 * s, x * s, (x + 3) * s, 3 * s, 3 * s, s);
+  };
+  const std::string cm = fluid("a", 0.01, -8) + fluid("b", 0.01, 5);
+  const std::vector<std::string> small = warningsOf(cm);
+  ASSERT_EQ(small.size(), 1u);
+  EXPECT_NE(
+      small[0].find("Interactions: fluids 'a' and 'b' (reach 0.015) meet through the default fluid/fluid "
+                    "function"),
+      std::string::npos)
+      << small[0];
+  EXPECT_NE(small[0].find("pushes them apart from much further than they reach"), std::string::npos)
+      << small[0];
+  const std::vector<std::string> large = warningsOf(fluid("a", 100, -8) + fluid("b", 100, 5));
+  ASSERT_EQ(large.size(), 1u);
+  EXPECT_NE(large[0].find("hardly acts, and they pass through each other"), std::string::npos) << large[0];
+  // Given in the scene's units, as FluidFluid or as a Pair: no warning.
+  const std::string linear =
+      "<Linear><AtZero>0.05</AtZero><Cutoff>0.01</Cutoff><Min>0</Min><Max>0.05</Max></Linear>";
+  EXPECT_TRUE(
+      warningsOf(cm + "<Interactions><FluidFluid>" + linear + "</FluidFluid></Interactions>").empty());
+  EXPECT_TRUE(
+      warningsOf(cm + "<Interactions><Pair><A>a</A><B>b</B>" + linear + "</Pair></Interactions>").empty());
+  // At the seed's own scale nothing is said.
+  EXPECT_TRUE(warningsOf(fluid("a", 1, -8) + fluid("b", 1, 5)).empty());
+  // The fluid/object default (cutoff 1.5) against a centimetre fluid, and its override.
+  const std::string ball =
+      "<Object><Name>ball</Name><Shape>sphere</Shape><Size>0.05</Size>"
+      "<ParticleSize>0.01</ParticleSize><InitialPosition>0 0.2 0</InitialPosition></Object>";
+  const std::vector<std::string> object = warningsOf(fluid("a", 0.01, -8) + ball);
+  ASSERT_EQ(object.size(), 1u);
+  EXPECT_NE(object[0].find("Interactions: fluid 'a' (reach 0.015) meets object 'ball' through the default "
+                           "fluid/object function"),
+            std::string::npos)
+      << object[0];
+  EXPECT_TRUE(warningsOf(fluid("a", 0.01, -8) + ball + "<Interactions><FluidObject>" + linear +
+                         "</FluidObject></Interactions>")
+                  .empty());
 }
 
 TEST(CompileWarnings, CountsParticlesThatSitExactlyOnAnother) {
