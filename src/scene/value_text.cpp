@@ -21,6 +21,7 @@ static_assert(kMaxReal <= FLT_MAX, "every accepted real must convert to a finite
 struct Problem {
   std::string text;
   std::string allowed;  // empty: the field's own rule
+  std::string_view at;  // the token at fault, a view into the parsed text; empty: the value
 };
 
 // from_chars does not take a leading '+'; people write one.
@@ -64,6 +65,13 @@ class ValueParser {
       : f_(f), text_(trimSpace(text)), tokens_(splitTokens(text)) {}
 
   [[nodiscard]] Value parse() const {
+    // Numbers written with commas ("0,-9.81,0", "1,5") are a common slip from other
+    // tools: said as such rather than as a count or "not a number".
+    if (f_.kind != Kind::String && f_.kind != Kind::Enum)
+      for (const std::string_view t : tokens_)
+        if (t.find(',') != std::string_view::npos)
+          throw Problem{fmt::format("{} holds a comma", quote(t)),
+                        "numbers separated by spaces, with a decimal point (e.g. 0 -9.81 0, 1.5)", t};
     switch (f_.kind) {
       case Kind::Real: return number(single());
       case Kind::Int: return integer(single());
@@ -98,7 +106,7 @@ class ValueParser {
 
  private:
   [[noreturn]] static void bad(std::string problem, std::string allowed = {}) {
-    throw Problem{std::move(problem), std::move(allowed)};
+    throw Problem{std::move(problem), std::move(allowed), {}};
   }
 
   [[nodiscard]] std::string_view single() const {
@@ -111,13 +119,12 @@ class ValueParser {
 
   [[nodiscard]] double number(std::string_view token) const {
     double v = 0;
-    if (auto problem = parseReal(token, v); !problem.empty()) bad(std::move(problem));
-    if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token));
+    if (auto problem = parseReal(token, v); !problem.empty()) throw Problem{std::move(problem), {}, token};
+    if (!f_.range.contains(v)) throw Problem{fmt::format("{} is out of range", token), {}, token};
     // After the range: a bounded field names its own range; the others this limit.
-    if (std::fabs(v) > kMaxReal) {
-      bad(fmt::format("{} is too large for single precision", quote(token)),
-          "|value| <= 3.4e38");
-    }
+    if (std::fabs(v) > kMaxReal)
+      throw Problem{fmt::format("{} is too large for single precision", quote(token)), "|value| <= 3.4e38",
+                    token};
     return v;
   }
 
@@ -201,7 +208,7 @@ ValueProblem parseValueText(const FieldInfo& field, std::string_view text, Value
     out = ValueParser(field, text).parse();
     return {};
   } catch (const Problem& p) {
-    return {p.text, p.allowed};
+    return {p.text, p.allowed, p.at.empty() ? -1 : p.at.data() - text.data()};
   }
 }
 

@@ -5,6 +5,7 @@
 ///
 /// Every real must also fit single precision (|value| <= kMaxReal): the model and the
 /// caches store floats, so a bigger number would turn into inf after validation.
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,9 @@ inline constexpr double kMaxReal = 3.4e38;
 struct ValueProblem {
   std::string text;     ///< "'abc' is not a number"; empty: no problem
   std::string allowed;  ///< the rule broken when not the field's own; empty: allowedText(field)
+  /// Where in the parsed text the token at fault starts (a long Particles list names
+  /// its line); -1: the value as a whole.
+  std::ptrdiff_t offset = -1;
 };
 
 /// The white-space separated tokens of s.
