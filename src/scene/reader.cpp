@@ -958,6 +958,25 @@ std::string byteCount(std::uint64_t n) {
                         parsed.description()),
             allowed);
   }
+  if (parsed.status == pugi::status_end_element_mismatch && !scan.mismatchedOpen.name.empty()) {
+    // pugixml says only "Start-end tags mismatch": the tags are named, with where the
+    // open one started (a closing tag in another case, a missing </Fluid> found at
+    // </Scene>).
+    const OpenElement& end = scan.mismatchedEnd;
+    const OpenElement& open = scan.mismatchedOpen;
+    const bool caseOnly =
+        end.name.size() == open.name.size() &&
+        std::equal(end.name.begin(), end.name.end(), open.name.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+        });
+    cx.fail(
+        cx.lineAt(static_cast<std::ptrdiff_t>(end.offset)), "XML",
+        fmt::format(
+            "</{}> does not close <{}> (opened at line {}){}", end.name, open.name,
+            cx.lineAt(static_cast<std::ptrdiff_t>(open.offset)),
+            caseOnly ? ": element names are case-sensitive" : ": an element is not closed, or closed twice"),
+        fmt::format("{}: each element closed by </name> with its own name, innermost first", kWellFormed));
+  }
   cx.fail(cx.lineAt(parsed.offset), "XML", fmt::format("not well-formed: {}", parsed.description()),
           std::string(kWellFormed));
 }

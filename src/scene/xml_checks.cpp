@@ -194,6 +194,14 @@ XmlTextCheck checkXmlText(std::string_view text) {
       }
       i = skipTo(i, i + 2, "?>", "a processing instruction");
     } else if (rest.starts_with("</")) {
+      std::size_t j = i + 2;
+      while (j < text.size() && !isNameEnd(text[j])) ++j;
+      const std::string_view name = text.substr(i + 2, j - i - 2);
+      if (!open.empty() && name != open.back().name && out.mismatchedEnd.name.empty() &&
+          out.mismatchedOpen.name.empty()) {
+        out.mismatchedEnd = {std::string(name), i};
+        out.mismatchedOpen = open.back();
+      }
       if (!open.empty()) open.pop_back();
       if (open.empty()) rootClosed = true;
       i = skipTo(i, i + 2, ">", "an end tag");

@@ -31,6 +31,11 @@ struct XmlTextCheck {
   /// it starts: a file cut short.
   std::string unfinished;
   std::size_t unfinishedOffset = 0;
+  /// The first end tag that does not close the innermost open element: its name and
+  /// offset, and that element (name empty: none). The parser refuses the file there; the
+  /// reader names both tags.
+  OpenElement mismatchedEnd;
+  OpenElement mismatchedOpen;
 };
 
 /// Scans text (without its byte order mark): UTF-8 that decodes to XML 1.0 characters

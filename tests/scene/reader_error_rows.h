@@ -79,8 +79,8 @@ inline std::vector<Row> rows() {
   const std::string fillPath = "Fluid 'w'/Fill[2]";
   return {
       // --- XML and the root ----------------------------------------------------------
-      {"MalformedXml", "<Scene version=\"1\">\n<Simulation>\n</Scene><!--E-->\n", "XML", "not well-formed",
-       "well-formed XML"},
+      {"MalformedXml", "<Scene version=\"1\">\n<Simulation>\n</Scene><!--E-->\n", "XML",
+       "</Scene> does not close <Simulation> (opened at line 2)", "well-formed XML"},
       {"EmptyDocument", "<!--E-->", "Scene", "no root element", "<Scene version=\"1\">"},
       {"UnquotedAttribute", "<!-- first line -->\n<Scene version=1><!--E-->\n</Scene>\n", "XML",
        "not well-formed: Error parsing element attribute", ""},
@@ -139,6 +139,14 @@ inline std::vector<Row> rows() {
        "XML", "<b> is nested 33 elements deep", "elements nested at most 32 deep"},
       {"Truncated", "<Scene version=\"1\">\n<Fluid>\n<Name>w</Name>\n<Particles>0 0 0<!--E-->", "XML",
        "the file ends inside <Particles> (opened at line 4): it is truncated", "every element closed"},
+      {"EndTagInAnotherCase",
+       "<Scene version=\"1\">\n<Fluid><Name>w</Name>\n<Viscosity>1</viscosity><!--E-->\n"
+       "<Particles>0 0 0</Particles></Fluid>\n</Scene>\n",
+       "XML", "</viscosity> does not close <Viscosity> (opened at line 3): element names are case-sensitive",
+       "each element closed by </name> with its own name"},
+      {"MissingEndTag",
+       "<Scene version=\"1\">\n<Fluid><Name>w</Name>\n<Particles>0 0 0</Particles>\n</Scene><!--E-->\n",
+       "XML", "</Scene> does not close <Fluid> (opened at line 2): an element is not closed", ""},
       {"TruncatedInsideATag", "<Scene version=\"1\">\n<Fluid>\n<Name>w</Name>\n<Fill>\n<Shape a=\"<!--E-->",
        "XML", "the file ends inside <Shape> (opened at line 5)", ""},
       {"ProcessingInstructionAfterRoot", "<Scene version=\"1\"/>\n<?render fast?><!--E-->\n", "XML",
