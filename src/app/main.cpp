@@ -94,7 +94,12 @@ int runApp(int argc, char** argv) {
       fmt::print(stderr, "Run 'softsub --help' for usage.\n");
       return code(ExitCode::BadInput);
     }
-    printError(std::string("command line: ") + e.what());
+    std::string what = e.what();
+    // CLI11's "--frames: At Most 1 required but received 2" for an option given twice.
+    if (const auto at = what.find(": At Most 1 required but received "); at != std::string::npos)
+      what = fmt::format("{}: given {} times (allowed: once)", what.substr(0, at),
+                         what.substr(at + std::string_view(": At Most 1 required but received ").size()));
+    printError("command line: " + what);
     fmt::print(stderr, "Run 'softsub --help' or 'softsub COMMAND --help' for usage.\n");
     return code(ExitCode::BadInput);
   }

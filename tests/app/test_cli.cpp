@@ -130,12 +130,17 @@ TEST(Cli, NegativeAndOutOfRangeOverridesExitTwoAndWriteNothing) {
       {"run --substeps=-3", "error: command line: --substeps: -3 is out of range"},
       {"run --substeps -3", "--substeps: -3 is out of range"},
       {"-updateNum -3 -f", "--substeps: -3 is out of range"},
-      {"run --frames=abc", "error: command line: --frames: abc is not a whole number (allowed: integer [0, 1000000])"},
+      {"run --frames=abc",
+       "error: command line: --frames: abc is not a whole number (allowed: integer [0, 1000000])"},
       {"run --frames 1.5", "error: command line: --frames: 1.5 is not a whole number"},
-      {"--threads 2000 run", "error: command line: --threads: 2000 is out of range (allowed: integer [0, 1024])"},
-      {"run --stop-recording-at -2", "error: command line: --stop-recording-at: -2 is out of range (allowed: integer >= -1)"},
+      {"run --frames 2 --frames 3", "error: command line: --frames: given 2 times (allowed: once)"},
+      {"--threads 2000 run",
+       "error: command line: --threads: 2000 is out of range (allowed: integer [0, 1024])"},
+      {"run --stop-recording-at -2",
+       "error: command line: --stop-recording-at: -2 is out of range (allowed: integer >= -1)"},
       {"run --integrator rk4",
-       "error: command line: --integrator: rk4 is not one of the choices (allowed: explicit-euler, symplectic-euler, "
+       "error: command line: --integrator: rk4 is not one of the choices (allowed: explicit-euler, "
+       "symplectic-euler, "
        "velocity-verlet)"},
   };
   for (const Case& c : cases) {
