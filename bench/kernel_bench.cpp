@@ -1,7 +1,7 @@
 // The solver's two hot stages on their own, with no integration around them, so that a
 // change to either can be measured in isolation (docs/benchmarks.md, issue #6):
 // - BM_PairKernel: one evaluation of the pair forces from a built list
-//   (fluid::accumulatePairForces), the forces zeroed first as the solver does;
+//   (fluid::setPairForces, as the solver evaluates between list rebuilds);
 // - BM_ListBuild: re-sorting an already sorted store into the grid and building the pair
 //   list (what every list rebuild costs when the order did not change);
 // - BM_GridResort: the grid rebuild alone on a store whose particles moved since it was
@@ -114,8 +114,7 @@ void BM_PairKernel(benchmark::State& st) {
   list.build(grid, c.table, c.store, c.skin, options);
   ParticleStore& s = c.store;
   for (auto _ : st) {
-    std::fill(s.f.begin(), s.f.end(), Force{});
-    fluid::accumulatePairForces(list, c.table, s, fluid::ForcesBefore::Zero);
+    fluid::setPairForces(list, c.table, s);
     benchmark::DoNotOptimize(s.f.data());
   }
   st.counters["pairs/s"] = benchmark::Counter(static_cast<double>(list.pairCount()) * static_cast<double>(st.iterations()),

@@ -68,6 +68,13 @@ class LayerLocks {
   std::span<std::atomic<bool>> locks_;
 };
 
+// Where a packed layer's sums go (packedPairForces): added to the store over the
+// layer's span, holding `locks` (setPairForces: its own layer's and the next one's;
+// empty in the phases, which need none).
+struct SumsTarget {
+  std::span<std::atomic<bool>> locks;
+};
+
 namespace baseline {
 #define SOFTSUB_KERNEL_AVX 0
 #include "fluid/pair_kernels.inl"
@@ -106,9 +113,9 @@ std::atomic<Simd>& simdChoice() {
 // The kernel for one layer, in the copy `simd` selects (sums: the thread's buffer for
 // the closed-form kernel).
 void layerForces(Simd simd, const PairList::Layer& layer, const forces::InteractionTable& table,
-                 ParticleStore& s, std::vector<float>& sums, std::span<std::atomic<bool>> locks = {}) {
-  if (simd == Simd::Avx2) SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s, sums, locks));
-  else baseline::layerForcesOf(layer, table, s, sums, locks);
+                 ParticleStore& s, std::vector<float>& sums, const SumsTarget& target = {}) {
+  if (simd == Simd::Avx2) SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s, sums, target));
+  else baseline::layerForcesOf(layer, table, s, sums, target);
 }
 
 }  // namespace
@@ -274,31 +281,38 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   }
 }
 
-void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s,
-                          ForcesBefore before) {
+void setPairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.size(), 16384), [&](const auto& r) {
+    std::fill(s.f.begin() + static_cast<std::ptrdiff_t>(r.begin()),
+              s.f.begin() + static_cast<std::ptrdiff_t>(r.end()), Force{});
+  });
+  const auto layers = list.layers();
+  if (!list.packedOnly_ || layers.size() < 2) return accumulatePairForces(list, table, s);
+  // All layers at once: each adds its sums to the store in one pass, holding the locks
+  // of its own layer and the next, so a slot gets at most two additions to zero, and
+  // a + b == b + a in IEEE arithmetic: the phases' result to the bit, in whatever order
+  // the layers finish. Why: two phases of whole layers leave a thread idle at the
+  // barrier whenever a phase's layers do not split evenly over the threads (15 layers:
+  // 8 and 7), a twelfth of the kernel's time on two threads. Handed out in the phases'
+  // order, even layers then odd ones (one thread runs them as the phases did): in
+  // layer order the 256,000-atom liquid on two threads was 1-2% slower, in this order
+  // it is not. (Storing instead of zeroing and adding, the first of a slot's two
+  // writers storing, was no faster: docs/benchmarks.md.)
+  const Simd simd = simdInUse();
+  std::atomic<bool>* locks = list.scratch_->locks.get();
+  const std::size_t evens = (layers.size() + 1) / 2;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layers.size(), 1), [&](const auto& range) {
+    std::vector<float>& sums = list.scratch_->perThread.local().sums;
+    for (std::size_t p = range.begin(); p != range.end(); ++p) {
+      const std::size_t l = p < evens ? 2 * p : 2 * (p - evens) + 1;
+      layerForces(simd, layers[l], table, s, sums, {{locks + l, l + 1 < layers.size() ? 2u : 1u}});
+    }
+  });
+}
+
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& s) {
   const auto layers = list.layers();
   const Simd simd = simdInUse();
-  if (before == ForcesBefore::Zero && list.packedOnly_ && layers.size() > 1) {
-    // All layers at once: each adds its sums to the store in one pass, holding the
-    // locks of its own layer and the next, so a slot gets at most two additions to
-    // zero, and a + b == b + a in IEEE arithmetic: the phases' result to the bit, in
-    // whatever order the layers finish. Why: two phases of whole layers leave a thread
-    // idle at the barrier whenever a phase's layers do not split evenly over the
-    // threads (15 layers: 8 and 7), a twelfth of the kernel's time on two threads.
-    // Still in the phases' order, even layers then odd ones (one thread runs what it ran
-    // with the phases): in layer order, the 256,000-atom liquid on two threads was 1-2%
-    // slower, in this order it is not, and the 32,000-atom one gains the same 6%.
-    std::atomic<bool>* locks = list.scratch_->locks.get();
-    const std::size_t evens = (layers.size() + 1) / 2;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layers.size(), 1), [&](const auto& range) {
-      std::vector<float>& sums = list.scratch_->perThread.local().sums;
-      for (std::size_t p = range.begin(); p != range.end(); ++p) {
-        const std::size_t l = p < evens ? 2 * p : 2 * (p - evens) + 1;
-        layerForces(simd, layers[l], table, s, sums, {locks + l, l + 1 < layers.size() ? 2u : 1u});
-      }
-    });
-    return;
-  }
   // Phase by phase: a layer writes to its own slots and the next layer's, which no other
   // layer of its phase touches; each slot's force is summed in slot and phase order.
   for (const std::vector<std::uint32_t>& phase : list.phases()) {

@@ -34,10 +34,6 @@ struct ListOptions {
   bool closedForm = true;
 };
 
-/// What store.f holds before accumulatePairForces adds the pair forces to it: anything,
-/// or zero in every component (which lets a list of packed layers run without phases).
-enum class ForcesBefore { Any, Zero };
-
 class PairList {
  public:
   PairList();
@@ -206,8 +202,7 @@ class PairList {
   /// may add forces to their i and j in parallel without sharing a slot.
   [[nodiscard]] const std::vector<std::vector<std::uint32_t>>& phases() const { return phases_; }
   /// Whether every layer is packed, its sums reaching no further than the next layer's
-  /// slots: accumulatePairForces(..., ForcesBefore::Zero) then runs the layers without
-  /// phases.
+  /// slots: setPairForces then runs the layers without phases.
   [[nodiscard]] bool packedOnly() const { return packedOnly_; }
 
  private:
@@ -216,8 +211,8 @@ class PairList {
              float skin, const ListOptions& options, ParticleStore* forces);
   std::vector<Layer> layers_;
   std::size_t layerCount_ = 0;  // layers_ in use (the rest keep their memory for later)
-  friend void accumulatePairForces(const PairList&, const forces::InteractionTable&, ParticleStore&,
-                                   ForcesBefore);
+  friend void accumulatePairForces(const PairList&, const forces::InteractionTable&, ParticleStore&);
+  friend void setPairForces(const PairList&, const forces::InteractionTable&, ParticleStore&);
   std::vector<std::vector<std::uint32_t>> phases_;
   bool grouped_ = false;
   bool packedOnly_ = false;     // every layer packed, its sums within its own and the next layer
@@ -234,11 +229,13 @@ class PairList {
 /// per pair, no virtual call, no allocation once warmed up. Runs the list's layers in
 /// parallel phase by phase; every force is summed in the same order whatever the number
 /// of threads, so the result is bitwise the same for any thread count.
-/// With ForcesBefore::Zero (the caller has set every store.f to zero, as the solver does
-/// before each evaluation) and a list of packed layers only (the Lennard-Jones liquid),
-/// the layers run all at once instead, with the same bits (see pair_forces.cpp).
-void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& store,
-                          ForcesBefore before = ForcesBefore::Any);
+void accumulatePairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& store);
+
+/// Sets store.f to the forces of every listed pair: zeroes it, then adds them as
+/// accumulatePairForces does, to the bit. A list of packed layers only (packedOnly():
+/// the Lennard-Jones liquid) runs all its layers at once instead of phase by phase
+/// (see pair_forces.cpp).
+void setPairForces(const PairList& list, const forces::InteractionTable& table, ParticleStore& store);
 
 /// Adds to store.f the forces of every pair closer than its cutoff, each pair once
 /// (Newton's third law: what i gets, j gets with the opposite sign):

@@ -230,16 +230,16 @@ void Simulation::computeForces() {
     reserveListWork();
     grid_.rebuild(s, cellSize_ + skin_, listWork_.bytes());
   }
-  forEachSlot(s.size(), [&](std::size_t i) { s.f[i] = Force{}; });
   if (rebuild && model_.bodies.empty()) {
     // Without bodies the rebuild adds the forces layer by layer as it lists them.
+    forEachSlot(s.size(), [&](std::size_t i) { s.f[i] = Force{}; });
     list_.buildAndAccumulate(grid_, model_.table, s, skin_, listOptions_);
   } else {
     if (rebuild) {
       list_.build(grid_, model_.table, s, skin_, listOptions_);
       listRigidPairs();
     }
-    fluid::accumulatePairForces(list_, model_.table, s, fluid::ForcesBefore::Zero);  // zeroed above
+    fluid::setPairForces(list_, model_.table, s);
   }
   if (rebuild) {
     holdReference(s.px, s.py, s.pz);

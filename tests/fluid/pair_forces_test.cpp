@@ -720,11 +720,12 @@ TEST(ClosedForm, SumsAreBitwiseTheSameOnEveryThreadCountAndCopy) {
   EXPECT_GE(checked, 3);
 }
 
-// The layers of a packed list run all at once when the forces start from zero
-// (ForcesBefore::Zero): each adds its sums to the store under its two layers' locks,
-// and two additions to zero commute, so the result is the phases' to the bit on any
-// thread count, however the threads interleave (repeated to give a race its chances;
-// without the locks it failed once in a few runs: neighbours seldom finish together).
+// setPairForces runs the layers of a packed list all at once: each adds its sums to the
+// store under its two layers' locks, and two additions to zero commute, so the result
+// is zeroing and the phases' accumulatePairForces to the bit, on any thread count,
+// however the threads interleave (repeated to give a race its chances; without the
+// locks it failed once in a few runs: neighbours seldom finish together), whatever the
+// store held before.
 TEST(ClosedForm, LayersWithoutPhasesGiveThePhasesBits) {
   const RestoreSimd restore;
   const forces::InteractionTable table = ljTable(1.0, 2.0);
@@ -755,18 +756,25 @@ TEST(ClosedForm, LayersWithoutPhasesGiveThePhasesBits) {
       // The baseline copy's fused multiply-adds are library calls: few rounds there.
       const int rounds = threads == 1 ? 1 : simd == Simd::Avx2 ? 100 : 3;
       for (int round = 0; round < rounds; ++round) {
-        zeroForces(a);
-        accumulatePairForces(list, table, a, ForcesBefore::Zero);
+        std::fill(a.f.begin(), a.f.end(), Force{1e30f, -2.0f, 3.0f, 4.0f});  // overwritten, not added to
+        setPairForces(list, table, a);
         ASSERT_EQ(a.f, phases.f) << threads << " threads, round " << round;
       }
     }
   }
-  // A list that is not packed only (the table kernel) keeps the phases.
+  // A list that is not packed only (the table kernel) keeps the phases, after zeroing.
   PairList plain;
   ListOptions options;
   options.closedForm = false;
   plain.build(grid, table, s, skin, options);
   EXPECT_FALSE(plain.packedOnly());
+  ParticleStore phases = s;
+  zeroForces(phases);
+  accumulatePairForces(plain, table, phases);
+  ParticleStore a = s;
+  std::fill(a.f.begin(), a.f.end(), Force{1e30f, -2.0f, 3.0f, 4.0f});
+  setPairForces(plain, table, a);
+  EXPECT_EQ(a.f, phases.f);
 }
 
 // Every listed pair (i, j), i < j, sorted: a list's pairs as a set.
