@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <fstream>
+#include <functional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -20,6 +21,19 @@ namespace {
 
 class Interrupt : public ::testing::TestWithParam<int> {};
 
+// Waits (up to `limit`) until ready(), sends `sig` to `pid` and waits for it: it must
+// exit by itself with code 130, not be ended by the signal.
+void signalAndExpect130(pid_t pid, int sig, const std::function<bool()>& ready, std::chrono::seconds limit,
+                        std::chrono::microseconds poll) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (!ready() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(poll);
+  ASSERT_EQ(::kill(pid, sig), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+}
+
 TEST_P(Interrupt, FinishesTheCurrentFrameAndExits130) {
   const int sig = GetParam();
   TempDir tmp;
@@ -28,15 +42,11 @@ TEST_P(Interrupt, FinishesTheCurrentFrameAndExits130) {
                                   (examplesDir() / "jelly-block.scene").string()},
                                  tmp / "err");
   ASSERT_GT(pid, 0);
-  // Wait until a few frames are out, so the signal lands in the middle of the run.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(out / "jelly-block.0003.sim") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_EQ(::kill(pid, sig), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  // Once a few frames are out, so that the signal lands in the middle of the run.
+  signalAndExpect130(
+      pid, sig, [&] { return fs::exists(out / "jelly-block.0003.sim"); }, std::chrono::seconds(120),
+      std::chrono::milliseconds(20));
+  if (HasFatalFailure()) return;
 
   const std::string err = readFile(tmp / "err");
   const std::string tail = " is the last complete frame";
@@ -85,14 +95,10 @@ TEST_P(Interrupt, WhileTheSceneLoadsExits130WithNothingWritten) {
   const pid_t pid = spawnSoftsub(
       {"run", "--formats", "sim", "--out", out.string(), (tmp / "big.scene").string()}, tmp / "err");
   ASSERT_GT(pid, 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!catches(pid, sig) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  ASSERT_EQ(::kill(pid, sig), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  // As soon as its handler is in place: while the scene is still being read.
+  signalAndExpect130(
+      pid, sig, [&] { return catches(pid, sig); }, std::chrono::seconds(60), std::chrono::microseconds(200));
+  if (HasFatalFailure()) return;
   const std::string err = readFile(tmp / "err");
   EXPECT_NE(err.find(fmt::format("interrupted by {} before the first frame was complete",
                                  sig == SIGINT ? "SIGINT" : "SIGTERM")),

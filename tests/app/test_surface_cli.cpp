@@ -141,6 +141,17 @@ void expectSurfacesRefusedFirst(const TempDir& tmp, const fs::path& scene,
   EXPECT_FALSE(fs::exists(tmp / "r"));
 }
 
+/// `run --formats mesh,vdb --voxel-size <voxel>` on `scene` is refused (exit 2) with a
+/// message holding `problem`, before its folder is made.
+void expectVoxelRefused(const TempDir& tmp, const fs::path& scene, const std::string& voxel,
+                        const std::string& problem) {
+  const RunResult r =
+      runSoftsub("run --formats mesh,vdb --voxel-size " + voxel + " --out o " + quote(scene), tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(problem), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(tmp / "o"));
+}
+
 // The default voxel is half the particle size; below 2e-5 OpenVDB refuses the grid's
 // transform ("internal error: ArithmeticError", exit 1, empty mesh/ and vdb/ folders).
 // It is now refused before anything is made, naming the particle size and the way out.
@@ -151,11 +162,8 @@ TEST(SurfaceCli, AParticleSizeTooSmallForTheGridIsRefusedFirst) {
   expectSurfacesRefusedFirst(tmp, scene, {"mesh", "vdb", "sim,mesh,vdb"},
                              "tiny.scene: Fluid 'a'/ParticleSize: 1e-05 is too small for surfaces",
                              "ParticleSize >= 4e-05 with surfaces, or --voxel-size 2e-05 or more");
-  const RunResult voxel = runSoftsub("run --formats mesh --voxel-size 1e-5 --out o " + quote(scene), tmp.path());
-  EXPECT_EQ(voxel.code, 2) << voxel.err;
-  EXPECT_NE(voxel.err.find("--voxel-size: 1e-05 is too small for fluid 'a'"), std::string::npos) << voxel.err;
-  EXPECT_NE(voxel.err.find("never below 2e-05"), std::string::npos) << voxel.err;
-  EXPECT_FALSE(fs::exists(tmp / "o"));
+  expectVoxelRefused(tmp, scene, "1e-5", "--voxel-size: 1e-05 is too small for fluid 'a'");
+  expectVoxelRefused(tmp, scene, "1e-5", "never below 2e-05");
   // The documented bound itself, 4e-5 (3.9999999e-5 in single precision), was refused.
   writeText(tmp / "edge.scene", oneFluid("4e-5", "0 0 0  4e-5 0 0"));
   const RunResult edge = runSoftsub("run --frames 0 --formats mesh --out e edge.scene", tmp.path());
@@ -182,13 +190,10 @@ TEST(SurfaceCli, AParticleSizeTooLargeForTheGridIsRefusedFirst) {
       tmp, tmp / "big.scene", {"vdb"},
       "big.scene: Fluid 'a'/ParticleSize: 1e+31 is too large for surfaces: the default voxel",
       "ParticleSize <= 2e+30 with surfaces, or --voxel-size 2.34375e+29 to 1e+30");
-  const RunResult voxel = runSoftsub("run --formats vdb --voxel-size 1e37 --out o big.scene", tmp.path());
-  EXPECT_EQ(voxel.code, 2) << voxel.err;
-  EXPECT_NE(
-      voxel.err.find("--voxel-size: 1e+37 is above the largest voxel the surfaces' grid takes (allowed: at "
-                     "most 1e+30)"),
-      std::string::npos)
-      << voxel.err;
+  expectVoxelRefused(
+      tmp, tmp / "big.scene", "1e37",
+      "--voxel-size: 1e+37 is above the largest voxel the surfaces' grid takes (allowed: at most "
+      "1e+30)");
   const RunResult fits =
       runSoftsub("run --frames 0 --formats vdb --voxel-size 1e30 --out v big.scene", tmp.path());
   EXPECT_EQ(fits.code, 0) << fits.err;
