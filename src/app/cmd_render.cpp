@@ -283,6 +283,10 @@ int renderCommand(const RenderOptions& o) {
     const std::size_t particles = compiled.model.particleCount();
     solver::Simulation sim(compiled.model, std::move(compiled.state));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, sim.snapshot(), loaded.file, o.quiet);
+    if (stop.load()) {  // stopped while the scene was read: nothing made yet, as run
+      fmt::print(stderr, "interrupted before the first picture (nothing written)\n");
+      return static_cast<int>(ExitCode::Interrupted);
+    }
     maker = std::make_unique<PictureMaker>(view, o.width, o.height);
     prepareOutputs();
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 // OpenGL's prototypes first; GLFW must not pull in its own gl.h.
 #include "render/gl.h"
@@ -384,7 +385,15 @@ int Viewer::run() {
     if (w > 0 && h > 0) {
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
       const FrameSnapshot& shown = frame();
-      const auto surfaces = surfaces_ ? surfacesOf(shown) : std::vector<render::RenderSurface>{};
+      std::vector<render::RenderSurface> surfaces;
+      try {
+        if (surfaces_) surfaces = surfacesOf(shown);
+      } catch (const std::invalid_argument& e) {
+        // A particle size the surfaces' grid cannot take (below 4e-5 or far above any
+        // scene): the particles stay drawn, and the viewer says why.
+        surfaces_ = false;
+        setMessage(fmt::format("no surfaces for this scene: {}", e.what()), true);
+      }
       renderer_->draw(shown, camera_, w, h, {}, surfaces);
     }
     drawPanels();

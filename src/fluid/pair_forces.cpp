@@ -42,7 +42,7 @@ namespace {
 
 // Holds the locks of a packed layer's two layers (its own and the next, whose slots its
 // sums reach) while it adds its sums to the store, in the schedule without phases
-// (accumulatePairForces): taken in ascending order, so two neighbours never wait on
+// (setPairForces): taken in ascending order, so two neighbours never wait on
 // each other; held for one pass over the layer's span. Nothing when `locks` is empty.
 class LayerLocks {
  public:
@@ -217,6 +217,7 @@ void PairList::buildAndAccumulate(const neighbors::CellGrid& grid, const forces:
 
 void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionTable& table,
                      const ParticleStore& s, float skin, const ListOptions& options, ParticleStore* forces) {
+  packedOnly_ = false;  // until the layers below are built (a build that throws leaves it so)
   rowCut2_.resize(table.materials());
   for (std::size_t a = 0; a < rowCut2_.size(); ++a) {
     const float radius = options.rowRadius.empty() ? std::sqrt(table.rowCutoff2(a)) : options.rowRadius[a];
@@ -266,7 +267,7 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
       });
     }
   }
-  // Whether the layers may run without phases (accumulatePairForces): every layer
+  // Whether the layers may run without phases (setPairForces): every layer
   // packed, its sums reaching no further than the next layer's slots (so two locks
   // cover them; a packed span never starts before its own layer).
   packedOnly_ = true;

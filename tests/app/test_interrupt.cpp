@@ -105,6 +105,19 @@ TEST_P(Interrupt, WhileTheSceneLoadsExits130WithNothingWritten) {
             std::string::npos)
       << err;
   EXPECT_FALSE(fs::exists(out / "big.0000.sim"));
+  // render too: no folder, no picture.
+  const fs::path pictures = tmp / "pictures";
+  const pid_t drawing =
+      spawnSoftsub({"render", "--out", pictures.string(), (tmp / "big.scene").string()}, tmp / "err2");
+  ASSERT_GT(drawing, 0);
+  signalAndExpect130(
+      drawing, sig, [&] { return catches(drawing, sig); }, std::chrono::seconds(60),
+      std::chrono::microseconds(200));
+  if (HasFatalFailure()) return;
+  EXPECT_NE(readFile(tmp / "err2").find("interrupted before the first picture (nothing written)"),
+            std::string::npos)
+      << readFile(tmp / "err2");
+  EXPECT_FALSE(fs::exists(pictures));
 }
 
 std::string signalName(const ::testing::TestParamInfo<int>& p) {

@@ -93,6 +93,25 @@ fs::path recordFrames(const fs::path& scene, int frames, const fs::path& dir) {
   return recorded;
 }
 
+// M (surfaces) on a scene whose particle size the surfaces' grid cannot take ended the
+// viewer with "internal error" (exit 1): it now keeps drawing the particles and says why.
+TEST(Viewer, KeyMOnAParticleSizeTooLargeForSurfacesSaysSoAndGoesOn) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  writeText(tmp / "huge.scene",
+            "<Scene version=\"1\"><Simulation><Frames>2</Frames></Simulation><Fluid><Name>a</Name>"
+            "<ParticleSize>3e38</ParticleSize><Particles>0 0 0  1e38 0 0</Particles></Fluid></Scene>\n");
+  writeText(tmp / "s.txt", "key M\nframes 1\nquit\n");
+  const RunResult r = view(tmp / "huge.scene", tmp / "s.txt", tmp.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("error: no surfaces for this scene: surface: voxel size 1.5e+38 above the largest the grid "
+                 "takes (allowed: voxel <= 1e+30)"),
+      std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
 // S into the folder of an earlier `run` of the same scene: that run's journal goes, as
 // when `run` starts afresh. It used to stay, and `run --resume` took the viewer's tweaked
 // frames for the earlier run's and continued them from the old run's checkpoint.
