@@ -321,7 +321,7 @@ int runCommand(const RunOptions& o) {
   // Stopped while the scene was read and prepared: nothing on disk has changed yet.
   if (stop.load()) {
     fmt::print(stderr, "interrupted by {} before the first frame was complete (nothing written)\n",
-               stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT");
+               stopSignalName());
     return static_cast<int>(ExitCode::Interrupted);
   }
 
@@ -455,7 +455,7 @@ int runCommand(const RunOptions& o) {
   progress.end();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!complete) {
-    const char* signal = stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
+    const char* signal = stopSignalName();
     if (done.last < 0)
       fmt::print(stderr, "interrupted by {} before the first frame was complete ({})\n", signal, where);
     else

@@ -27,4 +27,6 @@ const std::atomic<bool>& installStopHandlers() {
 
 int stopSignal() { return gSignal.load(); }
 
+const char* stopSignalName() { return stopSignal() == SIGTERM ? "SIGTERM" : "SIGINT"; }
+
 }  // namespace softsub::app

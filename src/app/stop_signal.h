@@ -11,5 +11,7 @@ const std::atomic<bool>& installStopHandlers();
 
 /// The signal that set the flag (SIGINT or SIGTERM), or 0.
 int stopSignal();
+/// "SIGTERM" when SIGTERM set the flag, else "SIGINT" (for messages).
+const char* stopSignalName();
 
 }  // namespace softsub::app

@@ -68,13 +68,6 @@ class LayerLocks {
   std::span<std::atomic<bool>> locks_;
 };
 
-// Where a packed layer's sums go (packedPairForces): added to the store over the
-// layer's span, holding `locks` (setPairForces: its own layer's and the next one's;
-// empty in the phases, which need none).
-struct SumsTarget {
-  std::span<std::atomic<bool>> locks;
-};
-
 namespace baseline {
 #define SOFTSUB_KERNEL_AVX 0
 #include "fluid/pair_kernels.inl"
@@ -113,9 +106,9 @@ std::atomic<Simd>& simdChoice() {
 // The kernel for one layer, in the copy `simd` selects (sums: the thread's buffer for
 // the closed-form kernel).
 void layerForces(Simd simd, const PairList::Layer& layer, const forces::InteractionTable& table,
-                 ParticleStore& s, std::vector<float>& sums, const SumsTarget& target = {}) {
-  if (simd == Simd::Avx2) SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s, sums, target));
-  else baseline::layerForcesOf(layer, table, s, sums, target);
+                 ParticleStore& s, std::vector<float>& sums, std::span<std::atomic<bool>> locks = {}) {
+  if (simd == Simd::Avx2) SOFTSUB_AVX2_ONLY(avx2::layerForcesOf(layer, table, s, sums, locks));
+  else baseline::layerForcesOf(layer, table, s, sums, locks);
 }
 
 }  // namespace
@@ -269,12 +262,11 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
   }
   // Whether the layers may run without phases (setPairForces): every layer
   // packed, its sums reaching no further than the next layer's slots (so two locks
-  // cover them; a packed span never starts before its own layer).
+  // cover them; a packed layer is narrow, whose span starts at its own first slot).
   packedOnly_ = true;
   for (std::size_t l = 0; l < layerCount_; ++l) {
     const std::uint32_t reach = l + 1 < layerCount_ ? layers_[l + 1].slots.end : layers_[l].slots.end;
-    packedOnly_ = packedOnly_ && layers_[l].isPacked() && layers_[l].span.begin >= layers_[l].slots.begin &&
-                  layers_[l].span.end <= reach;
+    packedOnly_ = packedOnly_ && layers_[l].isPacked() && layers_[l].span.end <= reach;
   }
   if (packedOnly_ && scratch_->lockCount < layerCount_) {
     scratch_->locks = std::make_unique<std::atomic<bool>[]>(layerCount_);
@@ -288,7 +280,7 @@ void setPairForces(const PairList& list, const forces::InteractionTable& table, 
               s.f.begin() + static_cast<std::ptrdiff_t>(r.end()), Force{});
   });
   const auto layers = list.layers();
-  if (!list.packedOnly_ || layers.size() < 2) return accumulatePairForces(list, table, s);
+  if (!list.packedOnly_) return accumulatePairForces(list, table, s);
   // All layers at once: each adds its sums to the store in one pass, holding the locks
   // of its own layer and the next, so a slot gets at most two additions to zero, and
   // a + b == b + a in IEEE arithmetic: the phases' result to the bit, in whatever order
@@ -306,7 +298,7 @@ void setPairForces(const PairList& list, const forces::InteractionTable& table, 
     std::vector<float>& sums = list.scratch_->perThread.local().sums;
     for (std::size_t p = range.begin(); p != range.end(); ++p) {
       const std::size_t l = p < evens ? 2 * p : 2 * (p - evens) + 1;
-      layerForces(simd, layers[l], table, s, sums, {{locks + l, l + 1 < layers.size() ? 2u : 1u}});
+      layerForces(simd, layers[l], table, s, sums, {locks + l, l + 1 < layers.size() ? 2u : 1u});
     }
   });
 }

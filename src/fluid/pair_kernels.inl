@@ -934,10 +934,11 @@ inline void addSums(Force* __restrict f, const float* __restrict x, const float*
 // slot order. Each slot's sum runs in a fixed order: pair by pair in list order, i's
 // own sum (its 8 lanes added in a fixed order) after its last pair; the same whatever
 // the number of threads.
-// The sums are added to the store holding target's locks (SumsTarget).
+// The sums are added to the store holding `locks` (setPairForces: this layer's and the
+// next one's; empty in the phases, which need none).
 void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
                       const float* __restrict qx, const float* __restrict qy, const float* __restrict qz,
-                      float* __restrict sums, std::size_t stride, const SumsTarget& target) {
+                      float* __restrict sums, std::size_t stride, std::span<std::atomic<bool>> locks) {
   const std::uint32_t lo = layer.span.begin & ~7u;
   Force* __restrict f = s.f.data();
   const std::uint16_t* __restrict code = layer.packed.data();
@@ -986,7 +987,7 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
     if (b == kBatch - 1 || k + 1 == rows) subtractOwnSums(held, b + 1, iv - b, sx, sy, sz);
   }
   const std::uint32_t from = layer.span.begin - lo;
-  const LayerLocks owned(target.locks);
+  const LayerLocks owned(locks);
   addSums(f + layer.span.begin, sx + from, sy + from, sz + from, layer.span.end - layer.span.begin);
 }
 
@@ -1042,10 +1043,10 @@ void widePairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj
 }
 
 // The kernel for one layer, in its list encoding. scratch: the thread's buffer for the
-// closed-form kernel, grown here as needed; target: see packedPairForces (packed
+// closed-form kernel, grown here as needed; locks: see packedPairForces (packed
 // layers only).
 inline void layerForcesOf(const PairList::Layer& layer, const forces::InteractionTable& table, ParticleStore& s,
-                          std::vector<float>& scratch, const SumsTarget& target) {
+                          std::vector<float>& scratch, std::span<std::atomic<bool>> locks) {
   if (layer.grouped) {
     if (!table.closedFormLj()) throw std::logic_error("a grouped pair list used with a table that has no closed form");
     const forces::ClosedFormLj& lj = *table.closedFormLj();
@@ -1066,12 +1067,12 @@ inline void layerForcesOf(const PairList::Layer& layer, const forces::Interactio
       scratch.resize(need);
     }
     if (!copy) return packedPairForces(layer, lj, s, s.px.data() + lo, s.py.data() + lo, s.pz.data() + lo,
-                                       scratch.data(), stride, target);
+                                       scratch.data(), stride, locks);
     float* q = scratch.data() + 3 * stride;
     const float* from[3] = {s.px.data(), s.py.data(), s.pz.data()};
     for (int axis = 0; axis < 3; ++axis)
       for (std::size_t t = 0; t < stride; ++t) q[axis * stride + t] = lo + t < n ? from[axis][lo + t] : 0.0f;
-    return packedPairForces(layer, lj, s, q, q + stride, q + 2 * stride, scratch.data(), stride, target);
+    return packedPairForces(layer, lj, s, q, q + stride, q + 2 * stride, scratch.data(), stride, locks);
   }
   if (layer.narrow)
     layerForces(layer, layer.near.data(), layer.slots.begin, table, s);

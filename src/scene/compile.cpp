@@ -212,8 +212,7 @@ std::vector<std::string> defaultInteractionWarnings(const SceneDesc& d, const so
                         "give <FluidObject> (or a <Pair> for them) in the scene's units",
                         d.fluids[f].name, r, o.name, cut,
                         r < cut ? "pushes the fluid from much further than it reaches"
-                                : "hardly acts, and the fluid passes "
-                                  "through the object"));
+                                : "hardly acts, and the fluid passes through the object"));
         break;
       }
   }

@@ -964,11 +964,7 @@ std::string byteCount(std::uint64_t n) {
     // </Scene>).
     const OpenElement& end = scan.mismatchedEnd;
     const OpenElement& open = scan.mismatchedOpen;
-    const bool caseOnly =
-        end.name.size() == open.name.size() &&
-        std::equal(end.name.begin(), end.name.end(), open.name.begin(), [](char a, char b) {
-          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
-        });
+    const bool caseOnly = equalIgnoringCase(end.name, open.name);
     cx.fail(
         cx.lineAt(static_cast<std::ptrdiff_t>(end.offset)), "XML",
         fmt::format(

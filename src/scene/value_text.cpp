@@ -70,8 +70,8 @@ class ValueParser {
     if (f_.kind != Kind::String && f_.kind != Kind::Enum)
       for (const std::string_view t : tokens_)
         if (t.find(',') != std::string_view::npos)
-          throw Problem{fmt::format("{} holds a comma", quote(t)),
-                        "numbers separated by spaces, with a decimal point (e.g. 0 -9.81 0, 1.5)", t};
+          bad(fmt::format("{} holds a comma", quote(t)),
+              "numbers separated by spaces, with a decimal point (e.g. 0 -9.81 0, 1.5)", t);
     switch (f_.kind) {
       case Kind::Real: return number(single());
       case Kind::Int: return integer(single());
@@ -105,8 +105,8 @@ class ValueParser {
   }
 
  private:
-  [[noreturn]] static void bad(std::string problem, std::string allowed = {}) {
-    throw Problem{std::move(problem), std::move(allowed), {}};
+  [[noreturn]] static void bad(std::string problem, std::string allowed = {}, std::string_view at = {}) {
+    throw Problem{std::move(problem), std::move(allowed), at};
   }
 
   [[nodiscard]] std::string_view single() const {
@@ -119,12 +119,11 @@ class ValueParser {
 
   [[nodiscard]] double number(std::string_view token) const {
     double v = 0;
-    if (auto problem = parseReal(token, v); !problem.empty()) throw Problem{std::move(problem), {}, token};
-    if (!f_.range.contains(v)) throw Problem{fmt::format("{} is out of range", token), {}, token};
+    if (auto problem = parseReal(token, v); !problem.empty()) bad(std::move(problem), {}, token);
+    if (!f_.range.contains(v)) bad(fmt::format("{} is out of range", token), {}, token);
     // After the range: a bounded field names its own range; the others this limit.
     if (std::fabs(v) > kMaxReal)
-      throw Problem{fmt::format("{} is too large for single precision", quote(token)), "|value| <= 3.4e38",
-                    token};
+      bad(fmt::format("{} is too large for single precision", quote(token)), "|value| <= 3.4e38", token);
     return v;
   }
 
@@ -176,14 +175,14 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+}  // namespace
+
 bool equalIgnoringCase(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
            return std::tolower(static_cast<unsigned char>(x)) ==
                   std::tolower(static_cast<unsigned char>(y));
          });
 }
-
-}  // namespace
 
 std::string_view trimSpace(std::string_view s) {
   while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);

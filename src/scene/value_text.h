@@ -17,6 +17,9 @@ namespace softsub::scene {
 /// s without leading and trailing XML white space (space, tab, CR, LF).
 std::string_view trimSpace(std::string_view s);
 
+/// Whether a and b are the same ASCII text but for letter case.
+bool equalIgnoringCase(std::string_view a, std::string_view b);
+
 /// The largest magnitude of a real in a scene, "3.4e38" in messages: just below FLT_MAX
 /// (3.4028e38), so every accepted real is a finite float.
 inline constexpr double kMaxReal = 3.4e38;
