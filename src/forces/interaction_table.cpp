@@ -91,10 +91,17 @@ InteractionTable::InteractionTable(std::size_t materials, int intervals)
 
 std::uint32_t InteractionTable::addSamples(const PairFunction& f, double* cutoffOut, int* intervalsOut) {
   *cutoffOut = cutoff(f);
-  for (const Sampled& s : sampledFunctions_)
-    if (s.function == f) {
-      *intervalsOut = s.intervals;
-      return s.offset;
+  // The function last found first: a scene of many fluids sets the same FluidFluid
+  // function for most of its pairs.
+  if (lastFound_ < sampledFunctions_.size() && sampledFunctions_[lastFound_].function == f) {
+    *intervalsOut = sampledFunctions_[lastFound_].intervals;
+    return sampledFunctions_[lastFound_].offset;
+  }
+  for (std::size_t k = 0; k < sampledFunctions_.size(); ++k)
+    if (sampledFunctions_[k].function == f) {
+      lastFound_ = k;
+      *intervalsOut = sampledFunctions_[k].intervals;
+      return sampledFunctions_[k].offset;
     }
   const int n = intervalsFor(f, intervals_);
   if (samples_.size() + 2 * static_cast<std::size_t>(n) > kMaxTableFloats)
@@ -121,6 +128,7 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   e.lastPiece = static_cast<std::uint32_t>(n - 1);
   // Count the entries with a velocity term as they are replaced (O(1) per set()).
   const auto moving = [](const PairEntry& p) { return p.damping != 0 || p.relativeVelocity != 0; };
+  const float replaced = entries_[a * materials_ + b].cutoff2;
   for (const std::size_t k : {a * materials_ + b, b * materials_ + a}) {
     velocityEntries_ -= moving(entries_[k]) ? 1 : 0;
     velocityEntries_ += moving(e) ? 1 : 0;
@@ -132,9 +140,14 @@ void InteractionTable::set(std::size_t a, std::size_t b, const Interaction& in) 
   described_[a * materials_ + b] = in;
   described_[b * materials_ + a] = in;
 
-  // Only rows a and b changed: O(materials) per set(), so compiling many fluids
-  // stays quadratic in the number of pairs it sets, not worse.
+  // Only rows a and b changed. A cutoff that grows (as every pair's does when a scene is
+  // compiled: from nothing to its function) raises their maxima in O(1); one that
+  // shrinks has them looked for again, O(materials).
   for (const std::size_t r : {a, b}) {
+    if (e.cutoff2 >= replaced) {
+      rowCutoff2_[r] = std::max(rowCutoff2_[r], e.cutoff2);
+      continue;
+    }
     rowCutoff2_[r] = 0;
     for (std::size_t c = 0; c < materials_; ++c)
       rowCutoff2_[r] = std::max(rowCutoff2_[r], entries_[r * materials_ + c].cutoff2);

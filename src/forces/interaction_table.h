@@ -142,6 +142,7 @@ class InteractionTable {
     int intervals;
   };
   std::vector<Sampled> sampledFunctions_;  // dedupe
+  std::size_t lastFound_ = 0;              // index of the function addSamples last found
 };
 
 }  // namespace softsub::forces

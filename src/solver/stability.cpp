@@ -3,8 +3,14 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <optional>
+#include <span>
+#include <tuple>
+#include <unordered_map>
 #include <variant>
 
 namespace softsub::solver {
@@ -48,11 +54,11 @@ constexpr std::size_t kPatchParticles = 3000;
 /// Lanczos steps on the patch.
 constexpr int kLanczosSteps = 60;
 
-/// Indices of the particles of material m.
-std::vector<std::uint32_t> particlesOf(const ParticleStore& s, std::uint16_t m) {
-  std::vector<std::uint32_t> out;
+/// The particles of each material, in store order (one pass for every pair to share).
+std::vector<std::vector<std::uint32_t>> particlesByMaterial(const ParticleStore& s, std::size_t materials) {
+  std::vector<std::vector<std::uint32_t>> out(materials);
   for (std::uint32_t i = 0; i < s.size(); ++i)
-    if (s.material[i] == m) out.push_back(i);
+    if (s.material[i] < materials) out[s.material[i]].push_back(i);
   return out;
 }
 
@@ -61,13 +67,11 @@ double distance2(const ParticleStore& s, std::uint32_t i, std::uint32_t j) {
   return dx * dx + dy * dy + dz * dz;
 }
 
-}  // namespace
-
-double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b, double damping,
-                          double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
-  if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
-  const std::vector<std::uint32_t> as = particlesOf(s, a);
-  const std::vector<std::uint32_t> bs = a == b ? as : particlesOf(s, b);
+/// latticeDampingRate on the particles `as` of material a and `bs` of b (the same list
+/// when a == b).
+double latticeRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b,
+                   std::span<const std::uint32_t> as, std::span<const std::uint32_t> bs, double damping,
+                   double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
   if (as.empty() || bs.empty()) return 0;
   const double c2 = cutoff * cutoff;
   // The most crowded of up to kCrowdSamples a particles, spread over the store: where
@@ -87,7 +91,7 @@ double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t
   if (most == 0) return 0;
   // The patch: the kPatchParticles a and b particles nearest the centre.
   std::vector<std::pair<double, std::uint32_t>> near;
-  auto gather = [&](const std::vector<std::uint32_t>& list) {
+  auto gather = [&](std::span<const std::uint32_t> list) {
     for (const std::uint32_t j : list) near.emplace_back(distance2(s, centre, j), j);
   };
   gather(as);
@@ -170,8 +174,6 @@ double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t
   const double rate = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(t, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
   return std::max(rate, 0.0);
 }
-
-namespace {
 
 /// The fastest mode's growth per second at time step dt (amplification^(1/dt)).
 double growthPerSecond(Integrator integrator, double omegaDt, double dampingNumber, double dt) {
@@ -274,6 +276,13 @@ std::vector<BodyRow> bodyRows(const Model& model, const State* state) {
 
 }  // namespace
 
+double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b, double damping,
+                          double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
+  if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
+  const std::vector<std::vector<std::uint32_t>> of = particlesByMaterial(s, std::size_t{std::max(a, b)} + 1);
+  return latticeRate(s, a, b, of[a], of[b], damping, relativeVelocity, cutoff, inverseMassA, inverseMassB);
+}
+
 std::string_view verdictName(StabilityVerdict verdict) {
   switch (verdict) {
     case StabilityVerdict::Stable: return "stable";
@@ -321,22 +330,26 @@ double maximumForce(const forces::PairFunction& f) {
   return m;
 }
 
+namespace {
+/// The largest modulus of the eigenvalues of [[a, b], [c, d]], in closed form (a scene of
+/// a thousand fluids asks for it some ten million times).
+double spectralRadius2(double a, double b, double c, double d) {
+  const double half = 0.5 * (a + d);
+  const double det = a * d - b * c;
+  const double disc = half * half - det;
+  if (disc >= 0) return std::abs(half) + std::sqrt(disc);  // two real eigenvalues
+  return std::sqrt(det);  // a complex pair: |lambda|^2 = det (> half^2 >= 0 here)
+}
+}  // namespace
+
 double amplificationPerStep(Integrator integrator, double omegaDt, double dampingNumber) {
   // State (x, u = v dt) or, for velocity Verlet, (x, u, phi = a dt^2 of the last force
   // evaluation): one substep is a linear map, and its spectral radius is the growth.
   const double w2 = omegaDt * omegaDt;
   const double d = dampingNumber;
   switch (integrator) {
-    case Integrator::ExplicitEuler: {
-      Eigen::Matrix2d a;
-      a << 1, 1, -w2, 1 - d;
-      return a.eigenvalues().cwiseAbs().maxCoeff();
-    }
-    case Integrator::SymplecticEuler: {
-      Eigen::Matrix2d a;
-      a << 1 - w2, 1 - d, -w2, 1 - d;
-      return a.eigenvalues().cwiseAbs().maxCoeff();
-    }
+    case Integrator::ExplicitEuler: return spectralRadius2(1, 1, -w2, 1 - d);
+    case Integrator::SymplecticEuler: return spectralRadius2(1 - w2, 1 - d, -w2, 1 - d);
     case Integrator::VelocityVerlet: {
       // u_h = u + phi/2; x' = x + u_h; phi' = -w2 x' - d u_h; u' = u_h + phi'/2.
       Eigen::Matrix3d a;
@@ -349,19 +362,26 @@ double amplificationPerStep(Integrator integrator, double omegaDt, double dampin
   return kInfinity;
 }
 
-PairStability assessInteraction(const forces::Interaction& interaction, double massA, double massB,
-                                double framesPerSecond, int substeps, Integrator integrator,
-                                double latticeDamping) {
+namespace {
+
+/// What assessInteraction needs of a function: its steepest slope and strongest force.
+struct FunctionNumbers {
+  double slope = 0;
+  double force = 0;
+};
+
+PairStability assessWith(const forces::Interaction& interaction, FunctionNumbers f, double mu,
+                         double framesPerSecond, int substeps, Integrator integrator, double latticeDamping) {
   PairStability p;
-  p.stiffness = maximumSlope(interaction.function);
-  p.reducedMass = reducedMass(massA, massB);
+  p.stiffness = f.slope;
+  p.reducedMass = mu;
   PairConstants c;
   c.omega = std::sqrt(kLatticeSpringFactor * p.stiffness / p.reducedMass);
   c.gamma = (kLatticeViscosityFactor * std::abs(interaction.damping) +
              kLatticeSpringFactor * std::abs(interaction.relativeVelocity)) /
             p.reducedMass;
   const double range = forces::cutoff(interaction.function);
-  c.push = range > 0 ? maximumForce(interaction.function) / p.reducedMass / range : 0;
+  c.push = range > 0 ? f.force / p.reducedMass / range : 0;
   c.lattice = latticeDamping;
   const Numbers n = numbersAt(c, framesPerSecond, substeps, integrator);
   p.omegaDt = n.omegaDt;
@@ -374,22 +394,89 @@ PairStability assessInteraction(const forces::Interaction& interaction, double m
   return p;
 }
 
+/// Each material's particles and their bounding box, for latticeDampingRate on every
+/// pair of a scene (a scene may have a thousand fluids: one pass over the store, and no
+/// pair looked at closer whose boxes lie further apart than its cutoff).
+class MaterialParticles {
+ public:
+  MaterialParticles(const ParticleStore& s, std::size_t materials)
+      : store_(s), of_(particlesByMaterial(s, materials)), lo_(materials), hi_(materials) {
+    for (std::size_t m = 0; m < materials; ++m) {
+      lo_[m] = {kInfinity, kInfinity, kInfinity};
+      hi_[m] = {-kInfinity, -kInfinity, -kInfinity};
+      for (const std::uint32_t i : of_[m]) {
+        const std::array<double, 3> p{s.px[i], s.py[i], s.pz[i]};
+        for (int k = 0; k < 3; ++k) {
+          lo_[m][k] = std::min(lo_[m][k], p[k]);
+          hi_[m][k] = std::max(hi_[m][k], p[k]);
+        }
+      }
+    }
+  }
+
+  double rate(std::size_t a, std::size_t b, double damping, double relativeVelocity, double cutoff,
+              double inverseMassA, double inverseMassB) const {
+    if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
+    for (int k = 0; k < 3; ++k)  // no a particle within the cutoff of a b particle
+      if (lo_[a][k] - hi_[b][k] >= cutoff || lo_[b][k] - hi_[a][k] >= cutoff) return 0;
+    return latticeRate(store_, static_cast<std::uint16_t>(a), static_cast<std::uint16_t>(b), of_[a], of_[b],
+                       damping, relativeVelocity, cutoff, inverseMassA, inverseMassB);
+  }
+
+ private:
+  const ParticleStore& store_;
+  std::vector<std::vector<std::uint32_t>> of_;
+  std::vector<std::array<double, 3>> lo_, hi_;
+};
+
+}  // namespace
+
+PairStability assessInteraction(const forces::Interaction& interaction, double massA, double massB,
+                                double framesPerSecond, int substeps, Integrator integrator,
+                                double latticeDamping) {
+  return assessWith(interaction, {maximumSlope(interaction.function), maximumForce(interaction.function)},
+                    reducedMass(massA, massB), framesPerSecond, substeps, integrator, latticeDamping);
+}
+
 StabilityReport assessStability(const Model& model, const State* state) {
   StabilityReport report;
   report.substeps = model.substeps;
   report.dt = model.dt();
   const std::size_t nf = std::min(model.fluids.size(), model.table.materials());
+  std::optional<MaterialParticles> particles;
+  if (state != nullptr) particles.emplace(state->particles, model.table.materials());
+  // A scene of many fluids has about fluids^2 / 2 pairs, most of them alike (the one
+  // FluidFluid function, the same masses): each function's slope and force (a few
+  // thousand samples) and each distinct pair's estimate are worked out once. The table
+  // keeps one sample offset per distinct function, which names it here.
+  std::unordered_map<std::uint32_t, FunctionNumbers> byFunction;
+  std::map<std::tuple<std::uint32_t, double, double, double, double>, PairStability> byPair;
   auto add = [&](std::size_t a, std::size_t b, double massB, std::string second) {
     const forces::Interaction& interaction = model.table.interaction(a, b);
+    const std::uint32_t function = model.table.entry(a, b).offset;
     const double massA = model.fluids[a].particleMass;
-    const double lattice =
-        state == nullptr ? 0
-                         : latticeDampingRate(state->particles, static_cast<std::uint16_t>(a), static_cast<std::uint16_t>(b),
-                                              std::abs(interaction.damping), std::abs(interaction.relativeVelocity),
-                                              forces::cutoff(interaction.function), 1 / massA,
-                                              std::isinf(massB) ? 0.0 : 1 / massB);
-    PairStability p = assessInteraction(interaction, massA, massB, model.framesPerSecond, model.substeps,
-                                        model.integrator, lattice);
+    const double lattice = particles ? particles->rate(a, b, std::abs(interaction.damping),
+                                                       std::abs(interaction.relativeVelocity),
+                                                       forces::cutoff(interaction.function), 1 / massA,
+                                                       std::isinf(massB) ? 0.0 : 1 / massB)
+                                     : 0;
+    const double mu = reducedMass(massA, massB);
+    const auto key =
+        std::make_tuple(function, interaction.damping, interaction.relativeVelocity, mu, lattice);
+    auto known = byPair.find(key);
+    if (known == byPair.end()) {
+      auto numbers = byFunction.find(function);
+      if (numbers == byFunction.end())
+        numbers = byFunction
+                      .emplace(function, FunctionNumbers{maximumSlope(interaction.function),
+                                                         maximumForce(interaction.function)})
+                      .first;
+      known = byPair
+                  .emplace(key, assessWith(interaction, numbers->second, mu, model.framesPerSecond,
+                                           model.substeps, model.integrator, lattice))
+                  .first;
+    }
+    PairStability p = known->second;
     p.first = model.fluids[a].name;
     p.second = std::move(second);
     p.materialA = a;

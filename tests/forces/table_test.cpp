@@ -112,6 +112,42 @@ TEST(InteractionTable, SymmetricEntriesSharedSamplesAndMaxCutoff) {
   }
 }
 
+// rowCutoff2 (the kernel's pre-filter) is the largest cutoff of each row however the
+// pairs were set: grown (kept in O(1)), shrunk, replaced by nothing, set again; and a
+// function found again (the last one or an older one) shares its samples.
+TEST(InteractionTable, RowCutoffsFollowEverySet) {
+  InteractionTable t(5);
+  auto check = [&](const char* when) {
+    for (std::size_t a = 0; a < t.materials(); ++a) {
+      float expected = 0;
+      for (std::size_t b = 0; b < t.materials(); ++b) expected = std::max(expected, t.entry(a, b).cutoff2);
+      EXPECT_EQ(t.rowCutoff2(a), expected) << when << ", row " << a;
+    }
+  };
+  const Interaction short1{Linear{5, 1, 0, 5}, 0, 0}, long2{Linear{5, 2, 0, 5}, 0, 0},
+      none{Linear{0, 0, 0, 0}, 0, 0};
+  for (std::size_t a = 0; a < 5; ++a)
+    for (std::size_t b = a; b < 5; ++b) t.set(a, b, short1);
+  check("all short");
+  t.set(1, 3, long2);
+  check("one long");
+  EXPECT_EQ(t.rowCutoff2(1), 4.0f);
+  const std::uint32_t longOffset = t.entry(1, 3).offset;
+  t.set(1, 3, short1);  // shrinks: rows 1 and 3 back to 1
+  check("long one shortened");
+  EXPECT_EQ(t.rowCutoff2(3), 1.0f);
+  t.set(2, 2, long2);
+  t.set(2, 2, none);
+  check("one cleared");
+  for (std::size_t b = 0; b < 5; ++b) t.set(4, b, none);
+  check("a row cleared");
+  EXPECT_EQ(t.rowCutoff2(4), 0.0f);
+  t.set(0, 4, long2);
+  check("set again");
+  EXPECT_EQ(t.entry(0, 4).offset, longOffset) << "found again, not sampled again";
+  EXPECT_EQ(t.entry(1, 3).offset, t.entry(0, 1).offset);
+  EXPECT_EQ(t.samples().size(), 2u + 3u * 2 * kDefaultIntervals) << "three distinct functions";
+}
 
 TEST(InteractionTable, PairsThatDoNothingPointAtAZeroPiece) {
   // The pair kernel reads every listed pair's table whatever the distance (branch-free):

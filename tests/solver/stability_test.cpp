@@ -3,6 +3,8 @@
 // estimate calls Unstable really flinging its particles while at minimumSubsteps it rests.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <limits>
 
@@ -378,6 +380,77 @@ TEST(Stability, AFluidOfOneParticleHasNoPairOfItsOwn) {
   EXPECT_EQ(alone.verdict, StabilityVerdict::Stable);
   d.fluids[0].particles.resize(2);
   EXPECT_EQ(assessStability(scene::compile(d).model).pairs.size(), 1u);
+}
+
+// A scene of many fluids shares the work of alike pairs (one function, the same reduced
+// mass and lattice rate): every pair's numbers must still be exactly those of the pair
+// assessed alone. Three masses, two viscosities, a damped FluidFluid, an override, and
+// fluids that touch (a lattice rate of their own) beside fluids far apart (none).
+TEST(Stability, ManyFluidsGiveEachPairItsOwnNumbers) {
+  scene::SceneDesc d = jellyBlob(8);
+  d.fluids.clear();
+  for (int f = 0; f < 12; ++f) {
+    scene::FluidDesc fluid;
+    fluid.name = "f" + std::to_string(f);
+    fluid.params = {2, 150, 1, -150, 2000, f % 2 == 0 ? 10.0 : 30.0, 1, 1.0 + f % 3};
+    // Pairs of fluids side by side (touching), the pairs 20 units apart.
+    const double x0 = 20.0 * (f / 2) + 3.3 * (f % 2);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) fluid.particles.emplace_back(x0 + 1.1 * i, 0.5 + 1.1 * j, 1.1 * k);
+    d.fluids.push_back(fluid);
+  }
+  d.interactions.fluidFluid = {forces::Linear{5, 1.5, 0, 5}, 2, 1};
+  d.interactions.pairs.push_back({"f0", "f1", {forces::Linear{40, 1.5, 0, 40}, 5, 0}});
+  const scene::Compiled c = scene::compile(d);
+  const Model& m = c.model;
+  const StabilityReport r = assessStability(m, &c.state);
+  ASSERT_EQ(r.pairs.size(), 12u * 13u / 2u);
+  int touching = 0;
+  for (const PairStability& p : r.pairs) {
+    const forces::Interaction& in = m.table.interaction(p.materialA, p.materialB);
+    const double massA = m.fluids[p.materialA].particleMass, massB = m.fluids[p.materialB].particleMass;
+    const double lattice =
+        latticeDampingRate(c.state.particles, static_cast<std::uint16_t>(p.materialA),
+                           static_cast<std::uint16_t>(p.materialB), std::abs(in.damping),
+                           std::abs(in.relativeVelocity), forces::cutoff(in.function), 1 / massA, 1 / massB);
+    touching += lattice > 0 && p.materialA != p.materialB;
+    const PairStability alone =
+        assessInteraction(in, massA, massB, m.framesPerSecond, m.substeps, m.integrator, lattice);
+    SCOPED_TRACE(p.first + " / " + p.second);
+    EXPECT_EQ(p.first, m.fluids[p.materialA].name);
+    EXPECT_EQ(p.second, m.fluids[p.materialB].name);
+    EXPECT_EQ(p.stiffness, alone.stiffness);
+    EXPECT_EQ(p.reducedMass, alone.reducedMass);
+    EXPECT_EQ(p.omegaDt, alone.omegaDt);
+    EXPECT_EQ(p.dampingNumber, alone.dampingNumber);
+    EXPECT_EQ(p.latticeDampingNumber, alone.latticeDampingNumber);
+    EXPECT_EQ(p.travelNumber, alone.travelNumber);
+    EXPECT_EQ(p.growthPerSecond, alone.growthPerSecond);
+    EXPECT_EQ(p.verdict, alone.verdict);
+    EXPECT_EQ(p.minimumSubsteps, alone.minimumSubsteps);
+  }
+  EXPECT_EQ(touching, 6);  // each side-by-side pair, and no two fluids 20 units apart
+}
+
+// The two-by-two integrators' spectral radius, in closed form, against Eigen's
+// eigenvalues of the same matrices (real and complex pairs, damped and not).
+TEST(Stability, TwoByTwoAmplificationMatchesEigenvalues) {
+  for (const double w : {0.0, 0.01, 0.3, 1.0, 1.9, 2.0, 2.1, 5.0})
+    for (const double d : {0.0, 0.05, 0.5, 1.0, 2.0, 3.5}) {
+      const double w2 = w * w;
+      Eigen::Matrix2d e, s;
+      e << 1, 1, -w2, 1 - d;
+      s << 1 - w2, 1 - d, -w2, 1 - d;
+      const double explicitRadius = e.eigenvalues().cwiseAbs().maxCoeff();
+      const double symplecticRadius = s.eigenvalues().cwiseAbs().maxCoeff();
+      EXPECT_NEAR(amplificationPerStep(Integrator::ExplicitEuler, w, d), explicitRadius,
+                  1e-12 * (1 + explicitRadius))
+          << w << " " << d;
+      EXPECT_NEAR(amplificationPerStep(Integrator::SymplecticEuler, w, d), symplecticRadius,
+                  1e-12 * (1 + symplecticRadius))
+          << w << " " << d;
+    }
 }
 
 }  // namespace
