@@ -132,37 +132,56 @@ class Context {
   std::vector<std::size_t> lineStarts_;
 };
 
-// The text of a value element; a value element has no child elements.
-std::string leafText(const Context& cx, pugi::xml_node node, const std::string& path) {
+// The text of a value element (which has no child elements), and where each of its
+// pieces of text starts in it. Text and CDATA sections are character data and join as
+// they stand (XML's rule: a name or number split across them keeps its characters); a
+// comment reads as a space, so `1 2 3<!-- row 2 -->4 5 6` is six numbers.
+struct LeafText {
   std::string text;
+  std::vector<std::pair<std::size_t, pugi::xml_node>> pieces;  // (start in text, node)
+};
+
+LeafText textOf(pugi::xml_node node) {
+  LeafText out;
   for (const pugi::xml_node child : node.children()) {
-    if (child.type() == pugi::node_element) {
-      cx.fail(cx.lineOf(child), path + "/" + child.name(),
-              fmt::format("unknown element <{}>", child.name()),
-              fmt::format("a value only: <{}> has no child elements", node.name()));
-    }
+    if (child.type() == pugi::node_comment && !out.text.empty()) out.text += ' ';
     if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
-      if (!text.empty()) text += ' ';
-      text += child.value();
+      out.pieces.emplace_back(out.text.size(), child);
+      out.text += child.value();
     }
   }
-  return text;
+  return out;
+}
+
+LeafText leafText(const Context& cx, pugi::xml_node node, const std::string& path) {
+  for (const pugi::xml_node child : node.children())
+    if (child.type() == pugi::node_element)
+      cx.fail(cx.lineOf(child), path + "/" + child.name(), fmt::format("unknown element <{}>", child.name()),
+              fmt::format("a value only: <{}> has no child elements", node.name()));
+  return textOf(node);
 }
 
 // Parses a value element by its field's kind, checking every number and rule of the kind.
 Value parseValue(const Context& cx, pugi::xml_node node, const std::string& path,
                  const FieldInfo& f) {
   Value v;
-  const std::string text = leafText(cx, node, path);
+  const LeafText leaf = leafText(cx, node, path);
+  const std::string& text = leaf.text;
   if (auto problem = parseValueText(f, text, v); !problem.text.empty()) {
-    // The line of the token at fault when the text is one piece (no comment or CDATA
-    // inside): a bad number on line 5,000 of a generated Particles list is named there.
-    // Line ends are counted in the parsed text, which holds one '\n' for each.
+    // The line of the token at fault: a bad number on line 5,000 of a generated
+    // Particles list is named there. Line ends are counted from the start of the piece
+    // of text it is in, whose parsed text holds one '\n' for each.
     int line = cx.lineOf(node);
-    const pugi::xml_node first = node.first_child();
-    if (problem.offset >= 0 && first && first == node.last_child() && first.type() == pugi::node_pcdata)
-      line =
-          cx.lineOf(first) + static_cast<int>(std::count(text.begin(), text.begin() + problem.offset, '\n'));
+    if (problem.offset >= 0) {
+      const auto at = static_cast<std::size_t>(problem.offset);
+      for (auto piece = leaf.pieces.rbegin(); piece != leaf.pieces.rend(); ++piece) {
+        if (piece->first > at) continue;
+        line = cx.lineOf(piece->second) +
+               static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(piece->first),
+                                           text.begin() + problem.offset, '\n'));
+        break;
+      }
+    }
     cx.fail(line, path, std::move(problem.text),
             problem.allowed.empty() ? allowedText(f) : std::move(problem.allowed));
   }
@@ -326,7 +345,7 @@ class Children {
 
 // The first child element named tag, trimmed text; "" when absent.
 std::string childText(pugi::xml_node node, const char* tag) {
-  return std::string(trimSpace(node.child(tag).child_value()));
+  return std::string(trimSpace(textOf(node.child(tag)).text));
 }
 
 }  // namespace
@@ -1003,10 +1022,12 @@ SceneDesc readSceneText(std::string_view text, const std::string& fileName,
     cx.fail(cx.lineAt(static_cast<std::ptrdiff_t>(scan.offset)), "XML", scan.problem, scan.allowed);
   }
   pugi::xml_document doc;
-  // parse_fragment keeps text outside the root as nodes (pugixml drops it otherwise);
+  // parse_fragment keeps text outside the root as nodes (pugixml drops it otherwise),
+  // parse_comments the comments (a comment inside a value reads as a space: leafText);
   // SceneReader then insists on exactly one root element and no text around it.
-  const pugi::xml_parse_result parsed = doc.load_buffer(
-      text.data(), text.size(), pugi::parse_default | pugi::parse_fragment, pugi::encoding_utf8);
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(text.data(), text.size(),
+                      pugi::parse_default | pugi::parse_fragment | pugi::parse_comments, pugi::encoding_utf8);
   if (!parsed) refuseParse(cx, text, parsed, scan);
   return SceneReader(cx).read(doc);
 }

@@ -219,6 +219,41 @@ TEST(Reader, CommentsCdataAndBomAreFine) {
   EXPECT_EQ(d.fluids[0].particles.size(), 2U);
 }
 
+// CDATA sections are character data: they join the text beside them as they stand (a
+// name or a number split across them keeps its characters). A comment is markup and
+// reads as a space, so numbers on either side of it stay apart.
+TEST(Reader, CdataJoinsTheTextBesideItAndACommentReadsAsASpace) {
+  const SceneDesc d = readSceneText(
+      sceneWith(
+          "<Fluid><Name>ab<![CDATA[cd]]>ef</Name><Viscosity>2<![CDATA[.5]]></Viscosity>"
+          "<ParticleMass><!-- kg -->3</ParticleMass><Particles>1 2 3<!-- row -->4 5 6<![CDATA[ 7]]>.5 8 9"
+          "</Particles></Fluid>"),
+      "t.scene");
+  ASSERT_EQ(d.fluids.size(), 1u);
+  EXPECT_EQ(d.fluids[0].name, "abcdef");
+  EXPECT_EQ(d.fluids[0].params.viscosity, 2.5);
+  EXPECT_EQ(d.fluids[0].params.particleMass, 3);
+  ASSERT_EQ(d.fluids[0].particles.size(), 3u);
+  EXPECT_EQ(d.fluids[0].particles[1].x(), 4);
+  EXPECT_EQ(d.fluids[0].particles[2].x(), 7.5);
+  EXPECT_EQ(d.fluids[0].particles[2].y(), 8);
+  EXPECT_EQ(d.fluids[0].particles[2].z(), 9);
+}
+
+// A bad number inside a value of several pieces (text, comments, CDATA) is named on its
+// own line, whichever piece it is in.
+TEST(Reader, ABadNumberInAValueOfSeveralPiecesIsNamedOnItsLine) {
+  const std::string fluid =
+      "<Fluid><Name>w</Name><Particles>0 0 0 <!-- a\ncomment -->\n1 1 1\n"
+      "<![CDATA[2 2 2\n3 3 3\n]]>4 4 4\nnan 5 5 <!--X-->\n</Particles></Fluid>";
+  std::string text = sceneWith(fluid);
+  const InputError e = readError(text);
+  EXPECT_EQ(e.where().line, testing::lineOf(text, "nan")) << e.what();
+  std::string inCdata = text;
+  inCdata.replace(inCdata.find("3 3 3"), 5, "3 x 3");
+  EXPECT_EQ(readError(inCdata).where().line, testing::lineOf(inCdata, "3 x 3")) << readError(inCdata).what();
+}
+
 TEST(Reader, LinesCountWithCrLfAndBom) {
   const std::string text =
       "\xEF\xBB\xBF<Scene>\r\n<Simulation>\r\n\r\n<Substeps>0</Substeps>\r\n</Simulation>\r\n</Scene>";
