@@ -22,6 +22,13 @@ def to_blender(v):
     return (v[0], -v[2], v[1])
 
 
+# The rotation (Euler XYZ, radians) that shows in Blender's axes an object whose data
+# stays in softsub's: +90 degrees about X takes softsub (x, y, z) to (x, -z, y), which
+# is to_blender. For what is read as it is, such as a VDB grid (meshes and points are
+# converted vertex by vertex instead).
+SOFTSUB_TO_BLENDER_EULER = (math.pi / 2, 0.0, 0.0)
+
+
 def quat_to_softsub(q):
     """A Blender rotation quaternion (w, x, y, z) in softsub coordinates."""
     return (q[0],) + to_softsub(q[1:4])

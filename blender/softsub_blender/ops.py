@@ -262,7 +262,9 @@ class SOFTSUB_OT_run(bpy.types.Operator):
             except ERRORS as e:
                 self.report({"ERROR"}, f"{msg}; import: {e}")
                 return {"CANCELLED"}
-        self.report({"WARNING"} if code == 130 else {"INFO"}, msg)
+        # A warning is about the result (it may blow up, an object flies off): it is
+        # shown as one, not as a plain "done".
+        self.report({"WARNING"} if code == 130 or r.warnings() else {"INFO"}, msg)
         return {"FINISHED"}
 
     def execute(self, context):

@@ -230,6 +230,9 @@ def _create(context, sim_dir, data):
         vol.frame_offset = scan["frames"][0] - 1
         vol.sequence_mode = "EXTEND"
         obj = bpy.data.objects.new(f"{name}_vdb", vol)
+        # The grid is read as written, in softsub's Y-up axes: the object turns it into
+        # Blender's, where the points and the surface mesh are.
+        obj.rotation_euler = axes.SOFTSUB_TO_BLENDER_EULER
         coll.objects.link(obj)
         mark(obj, "VOLUME", name)
     if scene.softsub.set_frame_range:

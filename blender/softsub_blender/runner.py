@@ -85,14 +85,26 @@ class Runner:
             return 1.0 if self.frame >= 0 else 0.0
         return max(0.0, min(1.0, self.frame / self.total))
 
+    def warnings(self):
+        """The simulator's warnings (each about this run's result: an unstable setting,
+        a fast object, a default function at another scale), each once, in order."""
+        out = []
+        for line in self.stderr_lines:
+            if line.startswith("warning:") and line not in out:
+                out.append(line)
+        return out
+
     def message(self):
-        """The simulator's own error line (or a summary of the exit), for the user."""
+        """The simulator's own error line (or a summary of the exit, with its warnings),
+        for the user."""
         code = self.proc.returncode
         errors = [l for l in self.stderr_lines if l.startswith("error:")]
+        warned = self.warnings()
+        said = f"; {len(warned)} warning{'s' if len(warned) > 1 else ''}: " + " ".join(warned) if warned else ""
         if code == 0:
-            return f"softsub: done, frames 0..{self.frame}"
+            return f"softsub: done, frames 0..{self.frame}{said}"
         if code == 130:
-            return f"softsub: stopped; frames 0..{self.frame} are complete"
+            return f"softsub: stopped; frames 0..{self.frame} are complete{said}"
         if errors:
             return "softsub: " + " ".join(errors)
         tail = " ".join(self.stderr_lines[-3:]) or "no message"

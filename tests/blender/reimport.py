@@ -19,13 +19,14 @@ import subprocess
 import sys
 
 import bpy
+import mathutils
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from blender_test_util import args, check, empty_scene, finish, install_addon  # noqa: E402
 
 A = args()
 install_addon(A)
-from softsub_blender import caches, scenefile  # noqa: E402
+from softsub_blender import axes, caches, scenefile  # noqa: E402
 
 work, repo, exe = A["work"], A["source"], A["softsub"]
 
@@ -127,6 +128,12 @@ bpy.context.scene.frame_start = 10
 check(bpy.ops.softsub.run(wait=True) == {"FINISHED"}, "run with surfaces")
 surf, vol = bpy.data.objects.get("honey_surface"), bpy.data.objects.get("honey_vdb")
 check(surf is not None and vol is not None and vol.type == "VOLUME", "surfaces not imported")
+# The grid is in softsub's axes; its object must put it where the points and mesh are.
+bpy.context.view_layer.update()
+for p in ((1.0, 2.0, 3.0), (-4.0, 0.5, 7.0)):
+    got = vol.matrix_world @ mathutils.Vector(p)
+    want = axes.to_blender(p)
+    check(all(abs(got[i] - want[i]) < 1e-6 for i in range(3)), f"volume: softsub {p} shown at {tuple(got)}, not {want}")
 for f in range(4):
     bpy.context.scene.frame_set(10 + f)
     verts, faces = caches.read_obj(os.path.join(work, "surf", "hdSim", "mesh", f"honey.{f:04d}.obj"))

@@ -282,6 +282,18 @@ class RunnerTest(unittest.TestCase):
         with self.assertRaisesRegex(runner.RunnerError, "cannot start '/nonexistent/softsub'"):
             runner.Runner(["/nonexistent/softsub", "run"], 1)
 
+    def test_warnings_reach_the_user(self):
+        # An unstable setting: softsub warns and runs; the message says so.
+        scene = os.path.join(ARGS.work, "warn.scene")
+        with open(scene, "w") as f:
+            f.write("<Scene><Simulation><Substeps>1</Substeps><Frames>1</Frames></Simulation><Fluid><Name>x</Name>"
+                    "<Amplitude>100000</Amplitude><MaximumForce>1000000</MaximumForce>"
+                    "<Particles>0 1 0 1.1 1 0</Particles></Fluid></Scene>")
+        r = runner.Runner(runner.run_command(ARGS.softsub, scene, os.path.join(ARGS.work, "warnSim"), "sim"), 1)
+        self.assertEqual(r.wait(60), 0)
+        self.assertEqual(len(r.warnings()), 1, r.stderr_lines)
+        self.assertRegex(r.message(), r"^softsub: done, frames 0\.\.1; 1 warning: warning: .*x / x unstable at 1 substeps")
+
 
 if __name__ == "__main__":
     unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
