@@ -31,9 +31,11 @@ std::string formatInputError(const InputLocation& where, const std::string& prob
   s.append(where.file.empty() ? std::string("<input>") : displayFile(where.file));
   if (where.line > 0) s.append(":").append(std::to_string(where.line));
   s.append(": ");
-  if (!where.element.empty()) s.append(where.element).append(": ");
-  s.append(problem);
-  if (!allowed.empty()) s.append(" (allowed: ").append(allowed).append(")");
+  // The element and the problem may quote names and values from the input (an object
+  // named "x&#10;y"): escaped like the file, so an error stays one readable line.
+  if (!where.element.empty()) s.append(displayFile(where.element)).append(": ");
+  s.append(displayFile(problem));
+  if (!allowed.empty()) s.append(" (allowed: ").append(displayFile(allowed)).append(")");
   return s;
 }
 

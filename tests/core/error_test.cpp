@@ -24,6 +24,13 @@ TEST(InputError, EscapesControlCharactersInTheFileName) {
   EXPECT_EQ(InputError({"a\tb.scene", 2, "X"}, "bad").where().file, "a\tb.scene");  // kept as it is
 }
 
+// Names and values quoted from the input (an object named "x&#10;y", a CR in a value)
+// are escaped too: an error is one line, and a CR does not hide what came before it.
+TEST(InputError, EscapesControlCharactersInTheElementProblemAndAllowed) {
+  EXPECT_STREQ(InputError({"s.scene", 3, "Object 'x\ny'/Name"}, "'x\ny' is not a valid name", "no \r").what(),
+               "s.scene:3: Object 'x\\ny'/Name: 'x\\ny' is not a valid name (allowed: no \\r)");
+}
+
 TEST(ExitCodes, AreTheDocumentedValues) {
   EXPECT_EQ(static_cast<int>(ExitCode::BadInput), 2);
   EXPECT_EQ(static_cast<int>(ExitCode::IoFailure), 3);
