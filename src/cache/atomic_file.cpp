@@ -108,6 +108,15 @@ void ensureDirectory(const std::filesystem::path& dir) {
 }
 
 std::string readFileBytes(const std::filesystem::path& path) {
+  // Only a regular file (after links): a named pipe would block the open until some
+  // writer came, and a device such as /dev/zero would be read until memory ran out.
+  std::error_code statError;
+  const std::filesystem::file_status st = std::filesystem::status(path, statError);
+  if (!statError && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    throw IoError(fmt::format("cannot read '{}': {}", path.string(),
+                              std::filesystem::is_directory(st)
+                                  ? "it is a folder"
+                                  : "not a regular file (a pipe, socket or device)"));
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) fail("read", path, errno);
   std::string bytes;

@@ -1,4 +1,5 @@
 // Atomic writes: complete or absent, no temporary files left behind, IoError on failure.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,26 @@ TEST(AtomicFile, MissingFolderThrowsIoError) {
     EXPECT_NE(what.find("No such file"), std::string::npos) << what;
   }
   EXPECT_TRUE(listFiles(dir.path()).empty());
+}
+
+// Reading takes regular files only: a named pipe would block at the open (no writer),
+// a link to /dev/zero would read until memory ran out, a folder is said to be one.
+TEST(AtomicFile, ReadingRefusesPipesDevicesAndFolders) {
+  const ScratchDir dir;
+  const auto fifo = dir.path() / "x.pdc";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const auto zero = dir.path() / "z.ply";
+  std::filesystem::create_symlink("/dev/zero", zero);
+  for (const auto& [path, says] :
+       {std::pair{fifo, "not a regular file"}, std::pair{zero, "not a regular file"},
+        std::pair{dir.path(), "it is a folder"}}) {
+    try {
+      (void)readFileBytes(path);
+      FAIL() << "no IoError for " << path;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(AtomicFile, ReadOnlyFolderThrowsAndKeepsTheOldFile) {
