@@ -26,6 +26,11 @@ CLI::App* addMeshCommand(CLI::App& root, MeshOptions& o) {
       ->required()
       ->check(nonEmptyPath(false));
   mesh->add_option("--formats", o.formats, "Surface formats: mesh, vdb or mesh,vdb")->capture_default_str();
+  mesh->add_option(
+          "--scene", o.scene,
+          "The scene file, for the fluids' particle sizes (default: <scene>.scene beside the folder; "
+          "without one every fluid is meshed at ParticleSize 1, with a warning)")
+      ->check(nonEmptyPath(false));
   addSurfaceOptions(mesh, o.surface, "");
   mesh->add_flag("-q,--quiet", o.quiet, "Print nothing but errors");
   return mesh;
@@ -45,8 +50,17 @@ int meshCommand(const MeshOptions& o) {
   if (formats.sim || formats.pdc || formats.ply || !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--formats"},
                      fmt::format("'{}' is not a surface format list", o.formats), kSurfaceFormats);
-  const session::Playback playback(o.folder);
-  checkSurfaceOptions(o.surface, playback.load(0), o.folder, o.quiet);
+  const session::Playback playback(o.folder, o.scene);
+  const FrameSnapshot first = playback.load(0);
+  checkSurfaceOptions(o.surface, first, o.folder, o.quiet);
+  // Surfaces are named after their fluid: a folder shared with another scene whose
+  // manifests list surfaces of the same names is refused, as run refuses it.
+  {
+    std::vector<std::string> fluids;
+    for (const FluidSnapshot& f : first.fluids) fluids.push_back(f.name);
+    refuseOtherScenesFiles(playback.folder(), playback.sceneName(), formats, fluids, "SIMDIR",
+                           "mesh a folder of one scene, or run the scenes into folders of their own");
+  }
   const surface::SurfaceSettings& settings = o.surface;
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 
@@ -54,8 +68,13 @@ int meshCommand(const MeshOptions& o) {
   if (chatty && !playback.sceneNote().empty()) fmt::print(stderr, "note: {}\n", playback.sceneNote());
   if (chatty)
     for (const std::string& note : playback.notes()) fmt::print(stderr, "note: {}\n", note);
-  if (chatty && !playback.scene())
-    fmt::print(stderr, "note: no scene file beside {}: default particle sizes\n", playback.folder().string());
+  // The sizes decide the surfaces (a surface of ParticleSize 1 around particles of 0.3
+  // encloses 14 times their volume): a warning, also where stderr is not a terminal.
+  if (!o.quiet && !playback.scene())
+    fmt::print(stderr,
+               "warning: no usable scene file at {}: every fluid is meshed at ParticleSize 1 (give the scene "
+               "with --scene)\n",
+               displayFile(playback.sceneFile().string()));
   const std::int64_t lastFrame = playback.frameNumbers().back();
   std::size_t particles = 0;
   std::optional<ProgressLine> progress;

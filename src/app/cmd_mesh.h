@@ -14,6 +14,7 @@ namespace softsub::app {
 struct MeshOptions {
   std::string folder;              ///< the recorded folder (or one of its .sim files)
   std::string formats = "mesh";    ///< mesh, vdb or both (comma-separated)
+  std::string scene;               ///< --scene: the scene file (default: <scene>.scene beside the folder)
   surface::SurfaceSettings surface;  ///< --voxel-size, --blob-radius
   bool quiet = false;              ///< nothing on stderr but errors
 };

@@ -210,7 +210,8 @@ void updateFrameManifest(const std::filesystem::path& outDir, const std::string&
 }
 
 void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
-                            const cache::Formats& formats, const std::vector<std::string>& fluidNames) {
+                            const cache::Formats& formats, const std::vector<std::string>& fluidNames,
+                            std::string_view element, std::string_view remedy) {
   if (!formats.pdc && !formats.mesh && !formats.vdb) return;
   // What this run writes under a fluid's name: "pdc/<fluid>Shape.", "mesh/<fluid>.", "vdb/<fluid>.".
   std::vector<std::string> prefixes;
@@ -229,12 +230,12 @@ void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::stri
         for (const std::string& prefix : prefixes)
           if (e.path.starts_with(prefix))
             throw InputError(
-                {outDir.string(), 0, "--out"},
+                {outDir.string(), 0, std::string(element)},
                 fmt::format("the folder holds '{}', a file of scene '{}' (listed in {}), which this run "
                             "of '{}' would write over: files of a fluid are named after the fluid, "
                             "not the scene",
                             e.path, other, path.lexically_relative(outDir).generic_string(), sceneName),
-                "another --out for this scene, or fluids named apart from the other scene's");
+                std::string(remedy));
       break;  // one readable manifest lists the scene's fluids
     }
   }

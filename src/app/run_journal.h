@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cache/frame_writer.h"
@@ -99,8 +100,12 @@ void updateFrameManifest(const std::filesystem::path& outDir, const std::string&
 /// scene, so two scenes with a fluid of the same name in one folder replaced each
 /// other's caches without a word (and `info` then called both runs complete). Looks at
 /// the first readable manifest of every other scene in the folder. InputError naming
-/// the file, the other scene and its manifest; nothing is changed.
-void refuseOtherScenesFiles(const std::filesystem::path& outDir, const std::string& sceneName,
-                            const cache::Formats& formats, const std::vector<std::string>& fluidNames);
+/// the file, the other scene and its manifest; nothing is changed. `element` and
+/// `remedy` are the error's element and what it allows (run's --out by default; mesh
+/// names its SIMDIR).
+void refuseOtherScenesFiles(
+    const std::filesystem::path& outDir, const std::string& sceneName, const cache::Formats& formats,
+    const std::vector<std::string>& fluidNames, std::string_view element = "--out",
+    std::string_view remedy = "another --out for this scene, or fluids named apart from the other scene's");
 
 }  // namespace softsub::app

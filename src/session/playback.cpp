@@ -57,7 +57,7 @@ void checkMeshName(const std::string& filename, const fs::path& simFile) {
 
 }  // namespace
 
-Playback::Playback(const fs::path& path) {
+Playback::Playback(const fs::path& path, const fs::path& givenScene) {
   std::error_code ec;
   fs::path folder = path.lexically_normal();
   if (folder.filename().empty() && folder.has_parent_path()) folder = folder.parent_path();
@@ -155,11 +155,18 @@ Playback::Playback(const fs::path& path) {
     break;
   }
 
-  // The scene file beside the folder: colours, sizes, frame rate, camera, container.
+  // The scene file (given, or beside the folder): colours, sizes, frame rate, camera,
+  // container.
   const fs::path absolute = fs::absolute(folder_, ec).lexically_normal();
-  const fs::path sceneFile = (absolute.filename().empty() ? absolute.parent_path() : absolute).parent_path() /
-                             (sceneName_ + ".scene");
-  if (fs::is_regular_file(sceneFile, ec)) {
+  const fs::path sceneFile =
+      !givenScene.empty() ? givenScene
+                          : (absolute.filename().empty() ? absolute.parent_path() : absolute).parent_path() /
+                                (sceneName_ + ".scene");
+  sceneFile_ = sceneFile;
+  if (!givenScene.empty()) {
+    scene_ = scene::readSceneFile(sceneFile.string());
+    fps_ = scene_->simulation.framesPerSecond;
+  } else if (fs::is_regular_file(sceneFile, ec)) {
     try {
       scene_ = scene::readSceneFile(sceneFile.string());
       fps_ = scene_->simulation.framesPerSecond;

@@ -29,7 +29,9 @@ class Playback {
   /// past the last one are left out: frames no manifest lists (an older softsub's rerun
   /// left them; a fresh run now removes what the earlier run's manifests list) are not
   /// the last run's (notes() says which).
-  explicit Playback(const std::filesystem::path& path);
+  /// `sceneFile`, when given, is read instead of the scene file beside the folder, and
+  /// must read (InputError, IoError otherwise).
+  explicit Playback(const std::filesystem::path& path, const std::filesystem::path& sceneFile = {});
 
   /// Number of frames.
   [[nodiscard]] std::size_t frameCount() const { return frames_.size(); }
@@ -54,6 +56,8 @@ class Playback {
   [[nodiscard]] const std::optional<scene::SceneDesc>& scene() const { return scene_; }
   /// Why the scene file beside the folder was not used, when it is there but invalid; "".
   [[nodiscard]] const std::string& sceneNote() const { return sceneNote_; }
+  /// The scene file looked for (beside the folder, or the one given).
+  [[nodiscard]] const std::filesystem::path& sceneFile() const { return sceneFile_; }
   /// Notes for a person: which scene was taken when the folder holds frames of several
   /// (and how to choose another), which frames were left out as an earlier run's (see
   /// the constructor).
@@ -70,6 +74,7 @@ class Playback {
   double fps_ = 24;
   std::optional<scene::SceneDesc> scene_;
   std::string sceneNote_;
+  std::filesystem::path sceneFile_;
   std::vector<std::string> notes_;
   std::vector<cache::ObjectMesh> meshes_;
 };

@@ -314,6 +314,59 @@ TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
   EXPECT_NEAR(surface::LevelSet::readVdb(tmp / "b/honey-dropSim/vdb/honey.0002.vdb").voxelSize(), 0.5, 1e-9);
 }
 
+// A recorded folder away from its scene: without the sizes every fluid is meshed at
+// ParticleSize 1, which a warning says (also where stderr is not a terminal) naming the
+// file looked for; --scene gives the run's bytes back. A bad --scene is an error.
+TEST(SurfaceCli, MeshAwayFromItsSceneWarnsAndTakesTheSceneFromAnOption) {
+  TempDir tmp;
+  // A particle size other than the default 1, so that the sizes show in the surfaces.
+  std::string text = readFile(examplesDir() / "honey-drop.scene");
+  const std::size_t size = text.find("<ParticleSize>1</ParticleSize>");
+  ASSERT_NE(size, std::string::npos);
+  text.replace(size, 30, "<ParticleSize>0.7</ParticleSize>");
+  const fs::path scene = tmp / "honey-drop.scene";
+  std::ofstream(scene) << text;
+  ASSERT_EQ(runSoftsub("run -q --frames 1 --formats sim,mesh " + quote(scene), tmp.path()).code, 0);
+  const std::string runs = readFile(tmp / "honey-dropSim/mesh/honey.0001.obj");
+  fs::create_directories(tmp / "elsewhere");
+  fs::rename(tmp / "honey-dropSim", tmp / "elsewhere/take1");
+  const RunResult bare = runSoftsub("mesh " + quote(tmp / "elsewhere/take1"), tmp.path());
+  ASSERT_EQ(bare.code, 0) << bare.err;
+  EXPECT_NE(
+      bare.err.find("warning: no usable scene file at " + (tmp / "elsewhere/honey-drop.scene").string() +
+                    ": every fluid is meshed at ParticleSize 1"),
+      std::string::npos)
+      << bare.err;
+  EXPECT_TRUE(readFile(tmp / "elsewhere/take1/mesh/honey.0001.obj") != runs) << "meshed at the scene's sizes";
+  EXPECT_EQ(runSoftsub("mesh -q " + quote(tmp / "elsewhere/take1"), tmp.path()).err, "");
+  const RunResult named =
+      runSoftsub("mesh --scene " + quote(scene) + " " + quote(tmp / "elsewhere/take1"), tmp.path());
+  ASSERT_EQ(named.code, 0) << named.err;
+  EXPECT_EQ(named.err, "");
+  EXPECT_TRUE(readFile(tmp / "elsewhere/take1/mesh/honey.0001.obj") == runs) << "not the run's surfaces";
+  const RunResult missing =
+      runSoftsub("mesh --scene nope.scene " + quote(tmp / "elsewhere/take1"), tmp.path());
+  EXPECT_NE(missing.code, 0);
+  EXPECT_NE(missing.err.find("nope.scene"), std::string::npos) << missing.err;
+}
+
+// Surfaces are named after their fluid: meshing one scene of a shared folder would have
+// written over another scene's surfaces of the same fluid name (which its manifests
+// list, so that run then read as incomplete). Refused, as run refuses it.
+TEST(SurfaceCli, MeshRefusesToWriteOverAnotherScenesSurfaces) {
+  TempDir tmp;
+  const fs::path a = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  std::ofstream(tmp / "honeyB.scene") << readFile(a);  // the same fluid, honey
+  ASSERT_EQ(runSoftsub("run -q --frames 1 --formats sim,mesh --out mix " + quote(a), tmp.path()).code, 0);
+  ASSERT_EQ(runSoftsub("run -q --frames 1 --formats sim --out mix honeyB.scene", tmp.path()).code, 0);
+  const std::string before = readFile(tmp / "mix/mesh/honey.0001.obj");
+  const RunResult r =
+      runSoftsub("mesh --scene honeyB.scene " + quote(tmp / "mix/honeyB.0000.sim"), tmp.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("a file of scene 'honey-drop'"), std::string::npos) << r.err;
+  EXPECT_TRUE(readFile(tmp / "mix/mesh/honey.0001.obj") == before) << "written over";
+}
+
 // `mesh` rewrote surfaces the run's manifests list, at other sizes, and left the
 // manifests as they were: `info` then found no complete frame, and `run --resume`
 // started over, writing the old surfaces back. The manifests follow the new files, and
