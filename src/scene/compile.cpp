@@ -312,6 +312,17 @@ Compiled compile(const SceneDesc& desc) {
   addBodies(desc, m, out.state, out.objectMeshes);
   out.warnings = initialStateWarnings(m, store, out.state);
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
+  // A static object never moves: velocities given to one would be dropped without a word.
+  for (const ObjectDesc& o : desc.objects) {
+    const bool linear = !o.initialLinearVelocity.isZero(), angular = !o.initialAngularVelocity.isZero();
+    if (o.isDynamic || (!linear && !angular)) continue;
+    out.warnings.push_back(fmt::format(
+        "Object '{}' (line {}) is static (IsDynamic false): its {} not used, as a static object never moves; "
+        "set IsDynamic true for a body that moves",
+        o.name, o.line,
+        linear && angular ? "InitialLinearVelocity and InitialAngularVelocity are"
+                          : (linear ? "InitialLinearVelocity is" : "InitialAngularVelocity is")));
+  }
   return out;
 }
 

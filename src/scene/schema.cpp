@@ -260,61 +260,93 @@ constexpr Field<PairDesc> kPair[] = {
 };
 
 constexpr Field<ObjectDesc> kObject[] = {
-    field<&ObjectDesc::name>(
-        {.tag = "Name", .kind = Kind::String, .unit = "-",
-         .meaning = "the object's name, in .sim files and in Pair",
-         .rule = "at most 100 bytes (UTF-8), no slash, backslash or control character; unique among the objects and fluids",
-         .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
+    field<&ObjectDesc::name>({.tag = "Name",
+                              .kind = Kind::String,
+                              .unit = "-",
+                              .meaning = "the object's name, in .sim files and in Pair",
+                              .rule = "at most 100 bytes (UTF-8), no slash, backslash or control character; "
+                                      "unique among the objects and fluids",
+                              .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
     field<&ObjectDesc::geometry>(
-        {.tag = "Geometry", .kind = Kind::String, .unit = "-",
+        {.tag = "Geometry",
+         .kind = Kind::String,
+         .unit = "-",
          .meaning = "mesh file (OBJ, PLY, STL, glTF, FBX...), relative to the scene's folder; "
                     "closed when Shape is mesh and IsDynamic is true",
          .rule = "a relative path that stays inside the scene's folder tree (symbolic links "
                  "resolved)",
          .defaultText = "none: a primitive (Shape and Size)"}),
-    field<&ObjectDesc::shape>(
-        {.tag = "Shape", .kind = Kind::Enum, .unit = "-",
-         .meaning = "the primitive whose inertia approximates the body, or mesh: the exact "
-                    "inertia of the closed mesh",
-         .rule = "mesh needs Geometry; a primitive without Geometry needs Size",
-         .choices = kObjectShapeNames,
-         .defaultText = "mesh when Geometry is given (else required)"}),
+    field<&ObjectDesc::shape>({.tag = "Shape",
+                               .kind = Kind::Enum,
+                               .unit = "-",
+                               .meaning =
+                                   "the primitive whose inertia approximates the body, or mesh: the exact "
+                                   "inertia of the closed mesh",
+                               .rule = "mesh needs Geometry; a primitive without Geometry needs Size",
+                               .choices = kObjectShapeNames,
+                               .defaultText = "mesh when Geometry is given (else required)"}),
     field<&ObjectDesc::size>(
-        {.tag = "Size", .kind = Kind::RealList, .unit = "units", .range = kPositive,
+        {.tag = "Size",
+         .kind = Kind::RealList,
+         .unit = "units",
+         .range = kPositive,
          .meaning = "the primitive's extents: sphere radius; cone and cylinder radius height "
                     "(axis along y); box width height depth",
          .rule = "1, 2 or 3 numbers by Shape (sphere, cone/cylinder, box); not with Shape mesh",
          .defaultText = "none: fitted to Geometry"}),
     field<&ObjectDesc::particleSize>(
-        {.tag = "ParticleSize", .kind = Kind::Real, .unit = "units", .range = kPositive,
-         .meaning = "diameter of the particles that fill the body",
+        {.tag = "ParticleSize",
+         .kind = Kind::Real,
+         .unit = "units",
+         .range = kPositive,
+         .meaning = "diameter of the particles that fill the body; also how hard fluid is pushed off it (the "
+                    "FluidObject function acts per body particle: finer pushes harder)",
          .defaultText = "1/20 of the largest extent (after UniformScale)"}),
-    field<&ObjectDesc::uniformScale>(
-        {.tag = "UniformScale", .kind = Kind::Real, .unit = "-", .range = kPositive,
-         .meaning = "scales the geometry (and Size) about its origin"}),
-    field<&ObjectDesc::initialPosition>(
-        {.tag = "InitialPosition", .kind = Kind::Vec3, .unit = "units",
-         .meaning = "where the geometry's origin is placed"}),
-    field<&ObjectDesc::initialRotation>(
-        {.tag = "InitialRotation", .kind = Kind::Vec3, .unit = "degrees",
-         .meaning = "Euler angles, applied about X, then Y, then Z"}),
-    field<&ObjectDesc::initialLinearVelocity>(
-        {.tag = "InitialLinearVelocity", .kind = Kind::Vec3, .unit = "units/s",
-         .meaning = "velocity of the centre of mass"}),
-    field<&ObjectDesc::initialAngularVelocity>(
-        {.tag = "InitialAngularVelocity", .kind = Kind::Vec3, .unit = "degrees/s",
-         .meaning = "angular velocity about the world axes"}),
+    field<&ObjectDesc::uniformScale>({.tag = "UniformScale",
+                                      .kind = Kind::Real,
+                                      .unit = "-",
+                                      .range = kPositive,
+                                      .meaning = "scales the geometry (and Size) about its origin"}),
+    field<&ObjectDesc::initialPosition>({.tag = "InitialPosition",
+                                         .kind = Kind::Vec3,
+                                         .unit = "units",
+                                         .meaning = "where the geometry's origin is placed"}),
+    field<&ObjectDesc::initialRotation>({.tag = "InitialRotation",
+                                         .kind = Kind::Vec3,
+                                         .unit = "degrees",
+                                         .meaning = "Euler angles, applied about X, then Y, then Z"}),
+    field<&ObjectDesc::initialLinearVelocity>({.tag = "InitialLinearVelocity",
+                                               .kind = Kind::Vec3,
+                                               .unit = "units/s",
+                                               .meaning = "velocity of the centre of mass"}),
+    field<&ObjectDesc::initialAngularVelocity>({.tag = "InitialAngularVelocity",
+                                                .kind = Kind::Vec3,
+                                                .unit = "degrees/s",
+                                                .meaning = "angular velocity about the world axes"}),
     field<&ObjectDesc::normalAttenuation>(
-        {.tag = "NormalAttenuation", .kind = Kind::Real, .unit = "-", .range = kUnitInterval,
+        {.tag = "NormalAttenuation",
+         .kind = Kind::Real,
+         .unit = "-",
+         .range = kUnitInterval,
          .meaning = "restitution e at contacts with walls and objects (each side's mean)"}),
     field<&ObjectDesc::tangentAttenuation>(
-        {.tag = "TangentAttenuation", .kind = Kind::Real, .unit = "-", .range = kUnitInterval,
+        {.tag = "TangentAttenuation",
+         .kind = Kind::Real,
+         .unit = "-",
+         .range = kUnitInterval,
          .meaning = "friction at contacts with walls and objects (each side's mean)"}),
-    field<&ObjectDesc::mass>({.tag = "Mass", .kind = Kind::Real, .unit = "mass",
-                              .range = kPositive, .meaning = "mass of the whole body"}),
+    field<&ObjectDesc::mass>({.tag = "Mass",
+                              .kind = Kind::Real,
+                              .unit = "mass",
+                              .range = kPositive,
+                              .meaning = "mass of the whole body"}),
     field<&ObjectDesc::isDynamic>(
-        {.tag = "IsDynamic", .kind = Kind::Bool, .unit = "-",
-         .meaning = "false: a static body that never moves (an open mesh is fine then)"}),
+        {.tag = "IsDynamic",
+         .kind = Kind::Bool,
+         .unit = "-",
+         .meaning =
+             "false: a static body that never moves (an open mesh is fine then; its initial velocities "
+             "are not used, with a warning)"}),
 };
 
 constexpr std::string_view kOneFunction = "exactly one function per parent";

@@ -3,6 +3,7 @@
 // ParticleSize far from the spacing) and about default interactions at another scale.
 // Only a scene that has them gets them.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -89,6 +90,32 @@ TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   EXPECT_NE(w[2].find("a static body never moves"), std::string::npos) << w[2];
   // Without a container nothing is outside.
   EXPECT_TRUE(warningsOf(object("far", "100 3 0", true)).empty());
+}
+
+// Velocities given to a static object would be dropped without a word: each such object
+// is named with its line and what is not used; a dynamic one, or a static one at rest,
+// is not.
+TEST(CompileWarnings, NamesTheVelocitiesOfAStaticObject) {
+  const std::string body =
+      "<Object><Name>belt</Name><Shape>box</Shape><Size>4 1 4</Size><IsDynamic>false</IsDynamic>"
+      "<InitialLinearVelocity>5 0 0</InitialLinearVelocity></Object>\n"
+      "<Object><Name>wheel</Name><Shape>sphere</Shape><Size>1</Size><InitialPosition>9 0 0</InitialPosition>"
+      "<IsDynamic>false</IsDynamic><InitialAngularVelocity>0 90 0</InitialAngularVelocity></Object>\n"
+      "<Object><Name>ball</Name><Shape>sphere</Shape><Size>1</Size><InitialPosition>-9 0 0</InitialPosition>"
+      "<InitialLinearVelocity>5 0 0</InitialLinearVelocity></Object>\n"
+      "<Object><Name>post</Name><Shape>box</Shape><Size>1 1 1</Size><InitialPosition>0 0 9</InitialPosition>"
+      "<IsDynamic>false</IsDynamic></Object>";
+  const std::vector<std::string> w = warningsOf(body);
+  ASSERT_EQ(w.size(), 2u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(
+      w[0].find("Object 'belt' (line 2) is static (IsDynamic false): its InitialLinearVelocity is not used"),
+      std::string::npos)
+      << w[0];
+  EXPECT_NE(
+      w[1].find(
+          "Object 'wheel' (line 3) is static (IsDynamic false): its InitialAngularVelocity is not used"),
+      std::string::npos)
+      << w[1];
 }
 
 // ParticleSize (default 1, absolute) against the particles' own spacing: a scene in
