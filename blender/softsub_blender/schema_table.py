@@ -61,7 +61,7 @@ SCHEMA = {
         ('Geometry', 'string', '-', 'none: a primitive (Shape and Size)', "a relative path that stays inside the scene's folder tree (symbolic links resolved)", "mesh file (OBJ, PLY, STL, glTF, FBX...), relative to the scene's folder; closed when Shape is mesh and IsDynamic is true"),
         ('Shape', 'enum', '-', 'mesh when Geometry is given (else required)', 'mesh, sphere, cone, box, cylinder; mesh needs Geometry; a primitive without Geometry needs Size', 'the primitive whose inertia approximates the body, or mesh: the exact inertia of the closed mesh'),
         ('Size', 'real list', 'units', 'none: fitted to Geometry', 'numbers > 0; 1, 2 or 3 numbers by Shape (sphere, cone/cylinder, box); not with Shape mesh', "the primitive's extents: sphere radius; cone and cylinder radius height (axis along y); box width height depth"),
-        ('ParticleSize', 'real', 'units', '1/20 of the largest extent (after UniformScale)', '> 0', 'diameter of the particles that fill the body'),
+        ('ParticleSize', 'real', 'units', '1/20 of the largest extent (after UniformScale)', '> 0', 'diameter of the particles that fill the body; also how hard fluid is pushed off it (the FluidObject function acts per body particle: finer pushes harder)'),
         ('UniformScale', 'real', '-', '1', '> 0', 'scales the geometry (and Size) about its origin'),
         ('InitialPosition', 'vec3', 'units', '0 0 0', '3 finite numbers', "where the geometry's origin is placed"),
         ('InitialRotation', 'vec3', 'degrees', '0 0 0', '3 finite numbers', 'Euler angles, applied about X, then Y, then Z'),
@@ -70,7 +70,7 @@ SCHEMA = {
         ('NormalAttenuation', 'real', '-', '0.5', '[0, 1]', "restitution e at contacts with walls and objects (each side's mean)"),
         ('TangentAttenuation', 'real', '-', '0.1', '[0, 1]', "friction at contacts with walls and objects (each side's mean)"),
         ('Mass', 'real', 'mass', '1', '> 0', 'mass of the whole body'),
-        ('IsDynamic', 'bool', '-', 'true', 'true, false, 1, 0', 'false: a static body that never moves (an open mesh is fine then)'),
+        ('IsDynamic', 'bool', '-', 'true', 'true, false, 1, 0', 'false: a static body that never moves (an open mesh is fine then; its initial velocities are not used, with a warning)'),
     ],
     'Linear': [
         ('AtZero', 'real', 'force', '5', 'any finite number', 'force at r = 0'),
