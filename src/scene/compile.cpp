@@ -148,6 +148,23 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
   return out;
 }
 
+// A static object never moves: initial velocities given to one would be dropped without
+// a word.
+std::vector<std::string> staticObjectWarnings(const SceneDesc& d) {
+  std::vector<std::string> out;
+  for (const ObjectDesc& o : d.objects) {
+    const bool linear = !o.initialLinearVelocity.isZero(), angular = !o.initialAngularVelocity.isZero();
+    if (o.isDynamic || (!linear && !angular)) continue;
+    out.push_back(fmt::format(
+        "Object '{}' (line {}) is static (IsDynamic false): its {} not used, as a static object never moves; "
+        "set IsDynamic true for a body that moves",
+        o.name, o.line,
+        linear && angular ? "InitialLinearVelocity and InitialAngularVelocity are"
+                          : (linear ? "InitialLinearVelocity is" : "InitialAngularVelocity is")));
+  }
+  return out;
+}
+
 // The seed's two global functions are absolute: cutoffs 1 (fluid/fluid) and 1.5
 // (fluid/object) and forces of 5, made for particles about a unit apart. A scene in
 // other units that leaves them out gets them at the wrong scale (a black-box review:
@@ -312,17 +329,7 @@ Compiled compile(const SceneDesc& desc) {
   addBodies(desc, m, out.state, out.objectMeshes);
   out.warnings = initialStateWarnings(m, store, out.state);
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
-  // A static object never moves: velocities given to one would be dropped without a word.
-  for (const ObjectDesc& o : desc.objects) {
-    const bool linear = !o.initialLinearVelocity.isZero(), angular = !o.initialAngularVelocity.isZero();
-    if (o.isDynamic || (!linear && !angular)) continue;
-    out.warnings.push_back(fmt::format(
-        "Object '{}' (line {}) is static (IsDynamic false): its {} not used, as a static object never moves; "
-        "set IsDynamic true for a body that moves",
-        o.name, o.line,
-        linear && angular ? "InitialLinearVelocity and InitialAngularVelocity are"
-                          : (linear ? "InitialLinearVelocity is" : "InitialAngularVelocity is")));
-  }
+  for (std::string& w : staticObjectWarnings(desc)) out.warnings.push_back(std::move(w));
   return out;
 }
 

@@ -72,7 +72,7 @@ double distance2(const ParticleStore& s, std::uint32_t i, std::uint32_t j) {
 double latticeRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b,
                    std::span<const std::uint32_t> as, std::span<const std::uint32_t> bs, double damping,
                    double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
-  if (as.empty() || bs.empty()) return 0;
+  if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0) || as.empty() || bs.empty()) return 0;
   const double c2 = cutoff * cutoff;
   // The most crowded of up to kCrowdSamples a particles, spread over the store: where
   // the fastest mode lives (the first of equals, so the same state gives the same answer).
@@ -278,7 +278,6 @@ std::vector<BodyRow> bodyRows(const Model& model, const State* state) {
 
 double latticeDampingRate(const ParticleStore& s, std::uint16_t a, std::uint16_t b, double damping,
                           double relativeVelocity, double cutoff, double inverseMassA, double inverseMassB) {
-  if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
   const std::vector<std::vector<std::uint32_t>> of = particlesByMaterial(s, std::size_t{std::max(a, b)} + 1);
   return latticeRate(s, a, b, of[a], of[b], damping, relativeVelocity, cutoff, inverseMassA, inverseMassB);
 }
@@ -416,7 +415,6 @@ class MaterialParticles {
 
   double rate(std::size_t a, std::size_t b, double damping, double relativeVelocity, double cutoff,
               double inverseMassA, double inverseMassB) const {
-    if (!(cutoff > 0) || (damping == 0 && relativeVelocity == 0)) return 0;
     for (int k = 0; k < 3; ++k)  // no a particle within the cutoff of a b particle
       if (lo_[a][k] - hi_[b][k] >= cutoff || lo_[b][k] - hi_[a][k] >= cutoff) return 0;
     return latticeRate(store_, static_cast<std::uint16_t>(a), static_cast<std::uint16_t>(b), of_[a], of_[b],
