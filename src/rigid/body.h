@@ -88,6 +88,16 @@ struct BodySet {
 /// angular velocity w for dt exactly (the rotation of angle |w| dt about w), normalised.
 void integratePose(const BodyInfo& info, BodyState& s, const Vec3& velocity, const Vec3& omega, double dt);
 
+/// Turns a body through dt of torque-free rotation, its angular momentum L (world) kept:
+/// the exact rotations about its three principal axes (each at the angle its own part of
+/// L gives it, about the axis as it turns), composed symmetrically: the axis of least
+/// moment for the whole dt in the middle, the other two for dt / 2 on each side. The
+/// energy's error stays bounded however long the body spins (the scheme is symplectic),
+/// including a thin rod spinning fast about its axis, whose moments differ five
+/// thousandfold; a turn by the angular velocity, even the midpoint's, gained energy
+/// there (a rod dropped on the floor, 29 → 332 in 3 s).
+void turnFree(const BodyInfo& info, BodyState& s, double dt);
+
 /// Kinetic energy (translation + rotation) of a body.
 [[nodiscard]] double kineticEnergy(const BodyInfo& info, const BodyState& s);
 

@@ -59,6 +59,7 @@ struct Contact {
   Vec3 t1{1, 0, 0}, t2{0, 0, 1};
   double massN = 0, massT1 = 0, massT2 = 0;
   double targetN = 0, targetT1 = 0;
+  double impactN = 0, impactT1 = 0;  ///< the impact law's targets, before an energy check scales them
   double lambdaN = 0, lambdaT1 = 0, lambdaT2 = 0, lambdaP = 0;
 };
 
@@ -103,6 +104,7 @@ class RigidSolver {
   void reduceContacts();
   void prepareContacts(double dt, const Vec3& gravity);
   void solveVelocities();
+  void solveVelocitiesWithoutGain();
   void solvePositions(double dt);
   /// True when a dynamic body took an impulse.
   bool pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
@@ -116,6 +118,11 @@ class RigidSolver {
   std::vector<Vec3> pos_, vel_, omega_, pseudoVel_, pseudoOmega_;
   std::vector<Mat3> rot_, invInertia_;
   std::vector<double> invMass_;
+  // The energy check (solveVelocitiesWithoutGain): each dynamic body's island, and per
+  // island its energy before the solve and the scale of its impact targets.
+  std::vector<std::int32_t> islandRoot_, island_;
+  std::vector<double> islandEnergy_, islandAfter_, islandScale_, islandLo_, islandHi_;
+  std::vector<Vec3> savedVel_, savedOmega_;
 };
 
 }  // namespace softsub::rigid
