@@ -129,6 +129,11 @@ class MeshBuilder {
                                     : fmt::format("the mesh has no triangles ({})", left),
                        "at least one triangle with non-zero area");
     }
+    if (const std::size_t turned = orientConsistently(mesh_); turned > 0 && report != nullptr)
+      report->warnings.push_back(fmt::format(
+          "turned {} triangle(s) wound against their neighbours (the winding most of their part of the "
+          "mesh has was kept)",
+          turned));
     if (report != nullptr) {
       const MeshEdges edges = countEdges(mesh_);
       if (edges.nonManifold > 0)
@@ -463,6 +468,78 @@ class ConfinedIOSystem : public MeshIOSystem {
 };
 
 }  // namespace
+
+std::size_t orientConsistently(TriangleMesh& mesh) {
+  // Each edge's uses, as (triangle, +1 if the triangle runs it from the lower vertex to
+  // the higher, -1 otherwise); only edges with exactly two uses join triangles.
+  const std::size_t n = mesh.triangles.size();
+  struct Use {
+    std::uint32_t triangle;
+    std::int32_t direction;
+  };
+  std::unordered_map<std::uint64_t, std::array<Use, 2>> edges;
+  std::unordered_map<std::uint64_t, std::uint32_t> count;
+  edges.reserve(n * 2);
+  count.reserve(n * 2);
+  for (std::uint32_t t = 0; t < n; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      if (a == b) continue;
+      const std::uint64_t key = a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+      const std::uint32_t c = count[key]++;
+      if (c < 2) edges[key][c] = Use{t, a < b ? 1 : -1};
+    }
+  // Neighbours through shared edges, and whether the two run it the same way (then one
+  // of them must turn).
+  std::vector<std::uint32_t> first(n + 1, 0);
+  for (const auto& [key, uses] : edges)
+    if (count[key] == 2) {
+      ++first[uses[0].triangle + 1];
+      ++first[uses[1].triangle + 1];
+    }
+  for (std::size_t t = 0; t < n; ++t) first[t + 1] += first[t];
+  std::vector<std::pair<std::uint32_t, bool>> next(first[n]);
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (const auto& [key, uses] : edges)
+    if (count[key] == 2) {
+      const bool same = uses[0].direction == uses[1].direction;
+      next[fill[uses[0].triangle]++] = {uses[1].triangle, same};
+      next[fill[uses[1].triangle]++] = {uses[0].triangle, same};
+    }
+  // Breadth-first over each part: turn[u] = turn[t] xor same.
+  std::vector<std::int8_t> turn(n, -1);
+  std::vector<std::uint32_t> part;
+  std::size_t turned = 0;
+  for (std::uint32_t seed = 0; seed < n; ++seed) {
+    if (turn[seed] >= 0) continue;
+    part.assign(1, seed);
+    turn[seed] = 0;
+    bool orientable = true;
+    for (std::size_t q = 0; q < part.size(); ++q) {
+      const std::uint32_t t = part[q];
+      for (std::uint32_t e = first[t]; e < first[t + 1]; ++e) {
+        const auto [u, same] = next[e];
+        const std::int8_t want = static_cast<std::int8_t>(turn[t] ^ (same ? 1 : 0));
+        if (turn[u] < 0) {
+          turn[u] = want;
+          part.push_back(u);
+        } else if (turn[u] != want) {
+          orientable = false;
+        }
+      }
+    }
+    if (!orientable) continue;
+    std::size_t flips = 0;
+    for (const std::uint32_t t : part) flips += static_cast<std::size_t>(turn[t]);
+    const std::int8_t flip = flips * 2 > part.size() ? 0 : 1;  // the majority keeps its winding
+    for (const std::uint32_t t : part)
+      if (turn[t] == flip) {
+        std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+        ++turned;
+      }
+  }
+  return turned;
+}
 
 MeshEdges countEdges(const TriangleMesh& mesh) {
   std::unordered_map<std::uint64_t, std::uint32_t> uses;

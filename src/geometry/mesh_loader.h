@@ -27,6 +27,14 @@ struct MeshEdges {
 /// Counts the boundary and non-manifold edges of mesh (indices must be in range).
 [[nodiscard]] MeshEdges countEdges(const TriangleMesh& mesh);
 
+/// Turns triangles wound against their neighbours so that every edge two triangles share
+/// runs opposite ways in them (the condition for a closed surface to enclose a volume),
+/// one connected part of the mesh (through such edges) at a time, keeping the winding
+/// most of that part's triangles have (on a tie, its first triangle's). A part that
+/// cannot be oriented (a Moebius strip) is left as it is. Returns the number of
+/// triangles turned.
+std::size_t orientConsistently(TriangleMesh& mesh);
+
 /// The warning for a volume fill of a mesh with boundary edges, "" when it has none.
 [[nodiscard]] std::string openMeshWarning(const MeshEdges& edges);
 
@@ -40,7 +48,10 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// with a repeated vertex, zero area or an out-of-range index are dropped and counted in
 /// `report`, as are edges shared by more than two triangles (non-manifold: kept, with a
 /// warning). Vertices no triangle uses are removed. A mirroring node transform has its
-/// triangles' winding reversed so orientation is kept.
+/// triangles' winding reversed so orientation is kept. Triangles wound against their
+/// neighbours are turned (orientConsistently), with a warning in `report`: a closed
+/// mesh with one flipped face is closed, and a body's volume and inertia need its
+/// faces to agree.
 ///
 /// Throws IoError when the file cannot be opened or read (message names the file and the
 /// reason); InputError {file, 0, "mesh"} when the file is larger than

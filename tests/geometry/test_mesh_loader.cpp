@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,21 @@ f 3//4 7//4 8//4 4//4
 f 1//5 3//5 4//5 2//5
 f 5//6 6//6 8//6 7//6
 )";
+
+/// `m` with vertices at the same position merged (the loader's weld, for meshes built here).
+TriangleMesh weldForTest(const TriangleMesh& m) {
+  TriangleMesh out;
+  std::vector<std::uint32_t> remap;
+  for (const Vec3& v : m.vertices) {
+    std::uint32_t found = static_cast<std::uint32_t>(out.vertices.size());
+    for (std::uint32_t k = 0; k < out.vertices.size(); ++k)
+      if (out.vertices[k] == v) found = k;
+    if (found == out.vertices.size()) out.vertices.push_back(v);
+    remap.push_back(found);
+  }
+  for (const auto& t : m.triangles) out.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  return out;
+}
 
 void expectUnitCube(const TriangleMesh& m) {
   EXPECT_EQ(m.triangles.size(), 12u);
@@ -265,6 +281,80 @@ TEST(LoadMesh, DegenerateTrianglesAreDroppedWithAWarning) {
   EXPECT_GE(report.droppedTriangles, 1u);
   ASSERT_FALSE(report.warnings.empty());
   EXPECT_NE(report.warnings.front().find("degenerate"), std::string::npos) << report.warnings.front();
+}
+
+// A closed cube with one face wound the wrong way is closed all the same: the loader
+// turns the face back (with a warning), so its volume is the cube's and a dynamic body
+// accepts it (it was refused as "not closed (4 edges have no opposite edge)").
+TEST(LoadMesh, AFaceWoundAgainstItsNeighboursIsTurned) {
+  TempDir dir;
+  std::string obj = kCubeObj;
+  const std::string top = "f 3//4 7//4 8//4 4//4";
+  obj.replace(obj.find(top), top.size(), "f 4//4 8//4 7//4 3//4");
+  MeshLoadReport report;
+  const TriangleMesh m = loadMesh(dir.write("flipped.obj", obj), &report);
+  expectUnitCube(m);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings.front().find("turned 2 triangle(s)"), std::string::npos)
+      << report.warnings.front();
+}
+
+// Each part keeps the winding most of its triangles have: an inside-out cube with one
+// face the right way is made wholly inside-out (one face turned, volume -1, which the mass
+// properties read as 1), and a hollow box's inner shell, wound inwards on purpose, stays
+// so (volume 8 - 1). A Moebius strip cannot be oriented and is left as it is.
+TEST(LoadMesh, EachPartKeepsTheWindingMostOfItHas) {
+  TriangleMesh cube;
+  cube.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  cube.triangles = {{0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}};
+  ASSERT_NEAR(signedVolume(cube), 1.0, 1e-12);
+  TriangleMesh insideOut = cube;
+  for (std::size_t t = 2; t < 12; ++t) std::swap(insideOut.triangles[t][1], insideOut.triangles[t][2]);
+  EXPECT_EQ(orientConsistently(insideOut), 2u);
+  EXPECT_NEAR(signedVolume(insideOut), -1.0, 1e-12);
+
+  TriangleMesh hollow;
+  for (const double scale : {2.0, 1.0})
+    for (const auto& t : cube.triangles) {
+      const auto base = static_cast<std::uint32_t>(hollow.vertices.size());
+      for (const std::uint32_t i : t) hollow.vertices.push_back(scale * cube.vertices[i]);
+      if (scale == 2.0) hollow.triangles.push_back({base, base + 1, base + 2});
+      else hollow.triangles.push_back({base, base + 2, base + 1});  // the cavity: inwards
+    }
+  // Welded per shell so the two shells are two parts.
+  hollow = weldForTest(hollow);
+  EXPECT_EQ(orientConsistently(hollow), 0u);
+  EXPECT_NEAR(signedVolume(hollow), 7.0, 1e-12);
+
+  // A Moebius strip of 8 quads.
+  TriangleMesh strip;
+  const int segments = 8;
+  for (int k = 0; k < segments; ++k) {
+    const double a = 2 * std::numbers::pi * k / segments;
+    const double twist = a / 2;
+    const Vec3 centre(std::cos(a), std::sin(a), 0);
+    const Vec3 across = std::cos(twist) * centre + std::sin(twist) * Vec3::UnitZ();
+    strip.vertices.push_back(centre + 0.3 * across);
+    strip.vertices.push_back(centre - 0.3 * across);
+  }
+  for (std::uint32_t k = 0; k < segments; ++k) {
+    const std::uint32_t a = 2 * k, b = 2 * k + 1;
+    // The last quad joins the first edge reversed: that is the half twist.
+    const std::uint32_t c = k + 1 < segments ? 2 * k + 2 : 1, d = k + 1 < segments ? 2 * k + 3 : 0;
+    strip.triangles.push_back({a, b, d});
+    strip.triangles.push_back({a, d, c});
+  }
+  // One triangle turned: an annulus (the same strip without the twist) gets it turned
+  // back; the Moebius strip is left with it.
+  std::swap(strip.triangles[4][1], strip.triangles[4][2]);
+  TriangleMesh annulus = strip;
+  annulus.triangles[2 * segments - 2] = {2 * segments - 2, 2 * segments - 1, 1};
+  annulus.triangles[2 * segments - 1] = {2 * segments - 2, 1, 0};
+  EXPECT_EQ(orientConsistently(annulus), 1u);
+  const TriangleMesh before = strip;
+  EXPECT_EQ(orientConsistently(strip), 0u);
+  EXPECT_EQ(strip.triangles, before.triangles);
 }
 
 TEST(LoadMesh, HugeFileIsRefusedBeforeReading) {
