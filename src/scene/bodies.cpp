@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <numbers>
 #include <optional>
+#include <unordered_set>
+
+#include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -112,13 +115,16 @@ bool isClosed(const geometry::TriangleMesh& mesh) {
 // (a lid 0.2 thick at the default particle size 0.5 would otherwise hold no particle at
 // all, and fluids would fall through it), or a surface fill of an open mesh; at least one
 // particle.
-std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, bool closed, double spacing, const Vec3& center) {
-  const geometry::MeshFillResult r =
+// `solid` (a closed mesh): the whole volume fill, before its shell is taken.
+std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, bool closed, double spacing,
+                                const Vec3& center, std::vector<Vec3>& solid) {
+  geometry::MeshFillResult r =
       geometry::fillMesh(scaled, {.spacing = spacing,
                                   .surfaceOnly = !closed,
                                   .thinParts = closed,
                                   .maxParticles = geometry::meshFillBound(scaled, spacing)});
   std::vector<Vec3> points = closed ? geometry::latticeShell(r.points, spacing, 2) : r.points;
+  if (closed) solid = std::move(r.points);
   if (points.empty()) points.push_back(center);  // smaller than one particle
   // The lattice starts at the mesh's low corner: where a size is not a whole number of
   // particles, the particles reach the low faces and stop up to a particle short of the
@@ -169,6 +175,44 @@ geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDi
                    "Geometry, or a primitive Shape with Size");
 }
 
+namespace {
+
+// How many particles of each fluid (the slots before the bodies' in `store`, material =
+// fluid) lie in a voxel of `solid`, a closed body's volume fill at `spacing` (voxel centres
+// lo + (k + 0.5) spacing, in the scaled mesh's axes), the body placed at `position` turned
+// by `rotation` (a mesh point x lies at position + rotation x).
+std::vector<std::size_t> fluidInside(const std::vector<Vec3>& solid, const Vec3& lo, double spacing,
+                                     const Vec3& position, const Quat& rotation, const ParticleStore& store,
+                                     std::size_t fluidSlots, std::size_t fluids) {
+  std::vector<std::size_t> count(fluids, 0);
+  if (solid.empty()) return count;
+  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 |
+           static_cast<std::uint64_t>(z);
+  };
+  std::unordered_set<std::uint64_t> voxels;
+  voxels.reserve(solid.size());
+  Vec3 hi = lo;
+  for (const Vec3& p : solid) {
+    const Vec3 k = ((p - lo) / spacing).array() - 0.5;
+    voxels.insert(key(std::llround(k.x()), std::llround(k.y()), std::llround(k.z())));
+    hi = hi.cwiseMax(p);
+  }
+  hi.array() += 0.5 * spacing;
+  const Quat back = rotation.conjugate();
+  for (std::size_t i = 0; i < fluidSlots; ++i) {
+    const Vec3 x = back * (Vec3(store.px[i], store.py[i], store.pz[i]) - position);
+    if ((x.array() < lo.array()).any() || (x.array() >= hi.array()).any()) continue;
+    const Vec3 k = (x - lo) / spacing;
+    if (voxels.count(key(static_cast<std::int64_t>(k.x()), static_cast<std::int64_t>(k.y()),
+                         static_cast<std::int64_t>(k.z()))) != 0)
+      ++count[store.material[i]];
+  }
+  return count;
+}
+
+}  // namespace
+
 double objectParticleSize(const ObjectDesc& o, const geometry::TriangleMesh& mesh) {
   if (o.particleSize > 0) return o.particleSize;
   const Aabb box = mesh.bounds();
@@ -177,7 +221,7 @@ double objectParticleSize(const ObjectDesc& o, const geometry::TriangleMesh& mes
 }
 
 void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
-               std::vector<geometry::TriangleMesh>& meshes) {
+               std::vector<geometry::TriangleMesh>& meshes, std::vector<std::string>* warnings) {
   if (desc.objects.empty()) return;
   rigid::BodySet& set = m.bodies;
   const std::size_t nf = desc.fluids.size();
@@ -223,7 +267,8 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     const double spacing = objectParticleSize(od, meshes.back());
     const Mass mass = massOf(od, scaled);
     const bool closed = isClosed(scaled);
-    const std::vector<Vec3> points = bodyParticles(scaled, closed, spacing, mass.center);
+    std::vector<Vec3> solid;
+    const std::vector<Vec3> points = bodyParticles(scaled, closed, spacing, mass.center, solid);
     // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
     // particle inside a face, the next layer more than a particle.
     const std::vector<geometry::SurfaceFaces> faces =
@@ -273,6 +318,20 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
       const Vec3 omega = od.initialAngularVelocity * (std::numbers::pi / 180.0);
       const Mat3 r = st.orientation.toRotationMatrix();
       st.angularMomentum = r * mass.inertia * r.transpose() * omega;
+    }
+    if (warnings != nullptr && nf > 0) {
+      const Aabb box = scaled.bounds();
+      const std::vector<std::size_t> inside =
+          fluidInside(solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), spacing, od.initialPosition,
+                      st.orientation, store, set.firstId, nf);
+      for (std::size_t f = 0; f < nf; ++f)
+        if (inside[f] > 0)
+          warnings->push_back(fmt::format(
+              "Object '{}' (line {}): {} particle(s) of fluid '{}' start inside it: a body is hollow behind "
+              "its "
+              "two outer layers of particles, so fluid inside it stays there; move the fill or the object so "
+              "that they do not overlap",
+              od.name, od.line, inside[f], desc.fluids[f].name));
     }
     set.bodies.push_back(std::move(info));
     state.bodies.push_back(st);

@@ -26,8 +26,11 @@ namespace softsub::scene {
 
 /// Appends every object of `desc` as a rigid body to the model (after the fluids:
 /// materials, interaction rows with every fluid) and its particles and state to `state`.
-/// `meshes` receives each object's objectMesh, in scene order.
+/// `meshes` receives each object's objectMesh, in scene order. `warnings` (if given)
+/// receives one sentence for each fluid with particles that start inside a closed
+/// object's volume: a body keeps only its two outer layers of particles, so nothing
+/// pushes fluid out of its hollow middle.
 void addBodies(const SceneDesc& desc, solver::Model& model, solver::State& state,
-               std::vector<geometry::TriangleMesh>& meshes);
+               std::vector<geometry::TriangleMesh>& meshes, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace softsub::scene

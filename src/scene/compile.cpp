@@ -326,8 +326,10 @@ Compiled compile(const SceneDesc& desc) {
                 v.y(), v.z(), static_cast<std::uint16_t>(f), static_cast<std::uint32_t>(f));
     nextId += info.count;
   }
-  addBodies(desc, m, out.state, out.objectMeshes);
+  std::vector<std::string> inside;
+  addBodies(desc, m, out.state, out.objectMeshes, &inside);
   out.warnings = initialStateWarnings(m, store, out.state);
+  for (std::string& w : inside) out.warnings.push_back(std::move(w));
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
   for (std::string& w : staticObjectWarnings(desc)) out.warnings.push_back(std::move(w));
   return out;

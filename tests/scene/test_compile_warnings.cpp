@@ -6,7 +6,9 @@
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -116,6 +118,48 @@ TEST(CompileWarnings, NamesTheVelocitiesOfAStaticObject) {
           "Object 'wheel' (line 3) is static (IsDynamic false): its InitialAngularVelocity is not used"),
       std::string::npos)
       << w[1];
+}
+
+// Fluid placed inside a closed object stays there (a body keeps only its two outer
+// layers of particles): each fluid with particles inside each object is counted, at the
+// object's initial pose (turned, placed), with the object's line; fluid beside it or in
+// an open mesh's shell (no inside) is not.
+TEST(CompileWarnings, CountsTheFluidParticlesThatStartInsideAnObject) {
+  // A 3 x 3 x 3 box at (0.25, 2.25, 0.1) in a fill whose particles sit at the cell
+  // centres -3.5 .. 3.5 (x, z) and 0.5 .. 3.5 (y), at rest and turned 30 and 45 degrees about y;
+  // a second fluid far away. No particle lies on a face, so inside is not a matter of
+  // rounding: the count is checked against a brute-force test in the box's own axes.
+  const std::string fluids = "<Fluid><Name>goo</Name>" + fill("-4 0 -4", "4 4 4") +
+                             "</Fluid>\n<Fluid><Name>far</Name>" + fill("20 0 20", "21 1 21") + "</Fluid>\n";
+  const Vec3 centre(0.25, 2.25, 0.1);
+  for (const double turn : {0.0, 30.0, 45.0}) {
+    SCOPED_TRACE(turn);
+    const std::vector<std::string> w = warningsOf(
+        fluids + fmt::format("<Object><Name>crate</Name><Shape>box</Shape><Size>3 3 3</Size>"
+                             "<ParticleSize>0.5</ParticleSize><InitialPosition>{} {} {}</InitialPosition>"
+                             "<InitialRotation>0 {} 0</InitialRotation></Object>",
+                             centre.x(), centre.y(), centre.z(), turn));
+    int inside = 0;
+    const double c = std::cos(turn * std::numbers::pi / 180), s = std::sin(turn * std::numbers::pi / 180);
+    for (double x = -3.5; x < 4; ++x)
+      for (double y = 0.5; y < 4; ++y)
+        for (double z = -3.5; z < 4; ++z) {
+          const Vec3 d = Vec3(x, y, z) - centre;
+          const Vec3 own(c * d.x() - s * d.z(), d.y(), s * d.x() + c * d.z());  // turned back about y
+          ASSERT_GT(std::abs(own.cwiseAbs().maxCoeff() - 1.5), 1e-3) << "a particle on a face";
+          if (own.cwiseAbs().maxCoeff() < 1.5) ++inside;
+        }
+    ASSERT_GT(inside, 0);
+    ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+    EXPECT_NE(w[0].find(fmt::format("Object 'crate' (line 4): {} particle(s) of fluid 'goo' start inside it",
+                                    inside)),
+              std::string::npos)
+        << w[0];
+  }
+  // Beside the box, or with an open mesh object (a surface of particles, no inside): none.
+  EXPECT_TRUE(warningsOf(fluids + "<Object><Name>crate</Name><Shape>box</Shape><Size>3 3 3</Size>"
+                                  "<InitialPosition>0 8 0</InitialPosition></Object>")
+                  .empty());
 }
 
 // ParticleSize (default 1, absolute) against the particles' own spacing: a scene in
