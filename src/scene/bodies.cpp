@@ -200,8 +200,13 @@ std::vector<std::size_t> fluidInside(const std::vector<Vec3>& solid, const Vec3&
   }
   hi.array() += 0.5 * spacing;
   const Quat back = rotation.conjugate();
+  // Most particles lie beyond the box's bounding sphere: tested first, without a turn.
+  const Vec3 centre = position + rotation * (0.5 * (lo + hi));
+  const double reach2 = 0.25 * (hi - lo).squaredNorm();
   for (std::size_t i = 0; i < fluidSlots; ++i) {
-    const Vec3 x = back * (Vec3(store.px[i], store.py[i], store.pz[i]) - position);
+    const Vec3 p(store.px[i], store.py[i], store.pz[i]);
+    if ((p - centre).squaredNorm() > reach2) continue;
+    const Vec3 x = back * (p - position);
     if ((x.array() < lo.array()).any() || (x.array() >= hi.array()).any()) continue;
     const Vec3 k = (x - lo) / spacing;
     if (voxels.count(key(static_cast<std::int64_t>(k.x()), static_cast<std::int64_t>(k.y()),
