@@ -57,7 +57,7 @@ SCHEMA = {
         ('Surface', 'bool', '-', 'false', 'true, false, 1, 0', 'extension: particles on the surface only (thin shells, open meshes) instead of the volume'),
     ],
     'Object': [
-        ('Name', 'string', '-', 'object<N>`, N its position among the objects (from 1)', 'at most 100 bytes (UTF-8), no slash, backslash or control character; unique among the objects and fluids', "the object's name, in .sim files and in Pair"),
+        ('Name', 'string', '-', 'object<N>`, N its position among the objects (from 1)', 'at most 100 bytes (UTF-8), no slash, backslash or control character, not . or ..; unique among the objects and fluids', "the object's name, in .sim files and in Pair"),
         ('Geometry', 'string', '-', 'none: a primitive (Shape and Size)', "a relative path that stays inside the scene's folder tree (symbolic links resolved)", "mesh file (OBJ, PLY, STL, glTF, FBX...), relative to the scene's folder; closed when Shape is mesh and IsDynamic is true"),
         ('Shape', 'enum', '-', 'mesh when Geometry is given (else required)', 'mesh, sphere, cone, box, cylinder; mesh needs Geometry; a primitive without Geometry needs Size', 'the primitive whose inertia approximates the body, or mesh: the exact inertia of the closed mesh'),
         ('Size', 'real list', 'units', 'none: fitted to Geometry', 'numbers > 0; 1, 2 or 3 numbers by Shape (sphere, cone/cylinder, box); not with Shape mesh', "the primitive's extents: sphere radius; cone and cylinder radius height (axis along y); box width height depth"),

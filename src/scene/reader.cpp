@@ -51,16 +51,18 @@ std::string lengthProblem(std::string_view s) {
 }
 
 // An object's name becomes part of file names: the rule of cache::checkFileNamePart (not
-// empty, no '/', '\\' or control character), checked here so a bad name is an error at
-// its line.
+// empty, not '.' or '..', no '/', '\\' or control character), checked here so a bad name
+// is an error at its line.
 constexpr std::string_view kObjectNameAllowed =
-    "a non-empty name of at most 100 bytes (UTF-8) without '/', '\\' or control characters";
+    "a non-empty name of at most 100 bytes (UTF-8) without '/', '\\' or control characters, other than '.' "
+    "and '..'";
 static_assert(kMaxNameLength == 100, "kObjectNameAllowed and the schema's Name rules say 100");
 bool usableObjectName(std::string_view s) {
-  return !s.empty() && s.size() <= kMaxNameLength && std::none_of(s.begin(), s.end(), [](char c) {
-    const auto u = static_cast<unsigned char>(c);
-    return c == '/' || c == '\\' || u < 0x20 || u == 0x7f;
-  });
+  return !s.empty() && s != "." && s != ".." && s.size() <= kMaxNameLength &&
+         std::none_of(s.begin(), s.end(), [](char c) {
+           const auto u = static_cast<unsigned char>(c);
+           return c == '/' || c == '\\' || u < 0x20 || u == 0x7f;
+         });
 }
 
 // The largest extent of a box, 0 for an empty one.
@@ -646,8 +648,13 @@ class SceneReader {
         const std::string tooLong = lengthProblem(object.name);
         cx_.fail(c.lineOf("Name"), label + "/Name",
                  !tooLong.empty() ? tooLong
-                                  : fmt::format("{} is not a valid object name: it becomes part of file names",
-                                                quote(object.name)),
+                 : object.name == "." || object.name == ".."
+                     ? fmt::format(
+                           "{} is not a valid object name: it names a folder, and the name becomes part of "
+                           "file names",
+                           quote(object.name))
+                     : fmt::format("{} is not a valid object name: it becomes part of file names",
+                                   quote(object.name)),
                  std::string(kObjectNameAllowed));
       }
       claimName(object.name, true, c.lineOf("Name"), label + "/Name", "object name");

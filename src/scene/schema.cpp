@@ -260,13 +260,14 @@ constexpr Field<PairDesc> kPair[] = {
 };
 
 constexpr Field<ObjectDesc> kObject[] = {
-    field<&ObjectDesc::name>({.tag = "Name",
-                              .kind = Kind::String,
-                              .unit = "-",
-                              .meaning = "the object's name, in .sim files and in Pair",
-                              .rule = "at most 100 bytes (UTF-8), no slash, backslash or control character; "
-                                      "unique among the objects and fluids",
-                              .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
+    field<&ObjectDesc::name>(
+        {.tag = "Name",
+         .kind = Kind::String,
+         .unit = "-",
+         .meaning = "the object's name, in .sim files and in Pair",
+         .rule = "at most 100 bytes (UTF-8), no slash, backslash or control character, not . or ..; "
+                 "unique among the objects and fluids",
+         .defaultText = "`object<N>`, N its position among the objects (from 1)"}),
     field<&ObjectDesc::geometry>(
         {.tag = "Geometry",
          .kind = Kind::String,
