@@ -4,6 +4,7 @@
 #include <array>
 #include <iterator>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -12,6 +13,7 @@
 
 #include "cache/atomic_file.h"
 #include "cache/manifest.h"
+#include "cache/naming.h"
 #include "core/error.h"
 #include "solver/checkpoint.h"
 
@@ -22,6 +24,45 @@ namespace {
 /// Keeps this many newest checkpoints: the newest may belong to a frame whose manifest a
 /// kill prevented, so the one before it is kept too.
 constexpr std::size_t kCheckpointsKept = 2;
+
+/// The files the frame after `last` would have, named as `last`'s are: the frame tag
+/// `.NNNN.` of sim, ply, mesh and vdb files moved on by one, and a PDC file's ticks by
+/// the step from `before`'s (the frame before, if it has the same file) or from 0, give
+/// or take one (ticks are rounded). For the frame a killed run was writing.
+std::vector<std::filesystem::path> nextFrameFiles(const cache::Manifest& last,
+                                                  const std::optional<cache::Manifest>& before) {
+  std::vector<std::filesystem::path> out;
+  const std::string tag = fmt::format(".{}.", cache::frameTag(last.frame));
+  const std::string next = fmt::format(".{}.", cache::frameTag(last.frame + 1));
+  for (const cache::ManifestEntry& e : last.files) {
+    const std::string& p = e.path;
+    if (p.size() > 4 && p.compare(p.size() - 4, 4, ".pdc") == 0) {
+      // pdc/<fluid>Shape.<ticks>.pdc
+      const std::size_t dot = p.rfind('.', p.size() - 5);
+      if (dot == std::string::npos) continue;
+      const std::string stem = p.substr(0, dot + 1);
+      std::int64_t ticks = 0;
+      try {
+        ticks = std::stoll(p.substr(dot + 1, p.size() - 5 - dot));
+      } catch (const std::exception&) {
+        continue;
+      }
+      std::int64_t step = last.frame > 0 ? ticks / last.frame : 0;
+      if (before && before->frame + 1 == last.frame)
+        for (const cache::ManifestEntry& b : before->files)
+          if (b.path.compare(0, stem.size(), stem) == 0 && b.path.size() > stem.size() + 4) try {
+              step = ticks - std::stoll(b.path.substr(stem.size(), b.path.size() - stem.size() - 4));
+            } catch (const std::exception&) {}
+      if (step <= 0) continue;  // frame 0 alone: the step is not known
+      for (std::int64_t d = -1; d <= 1; ++d)
+        out.emplace_back(fmt::format("{}{}.pdc", stem, ticks + step + d));
+      continue;
+    }
+    if (const std::size_t at = p.rfind(tag); at != std::string::npos)
+      out.emplace_back(fmt::format("{}{}{}", p.substr(0, at), next, p.substr(at + tag.size())));
+  }
+  return out;
+}
 
 void removeQuietly(const std::filesystem::path& p) {
   std::error_code ec;
@@ -165,25 +206,49 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
     return std::find(kFrameFolders.begin(), kFrameFolders.end(), first->string()) != kFrameFolders.end();
   };
   std::size_t removed = 0;
+  const auto kept = [&](const fs::path& file) {
+    return std::any_of(keep.begin(), keep.end(), [&](const fs::path& k) {
+      std::error_code ec;
+      return fs::equivalent(k, file, ec) && !ec;
+    });
+  };
+  // The newest manifest that reads (its frame and files, and when it was written), and
+  // the PDC ticks of the frame before it, for the frame a killed run was writing.
+  std::optional<cache::Manifest> last;
+  fs::file_time_type lastWritten{};
+  std::optional<cache::Manifest> beforeLast;
   for (const std::int64_t f : cache::manifestFrames(outDir, sceneName)) {
     const fs::path path = cache::manifestPath(outDir, sceneName, f);
     // A manifest that does not read names no file.
-    const std::vector<cache::ManifestEntry> listed =
-        cache::readManifestIfValid(path).value_or(cache::Manifest{}).files;
-    for (const cache::ManifestEntry& e : listed) {
+    const std::optional<cache::Manifest> manifest = cache::readManifestIfValid(path);
+    if (manifest) {
+      std::error_code ec;
+      beforeLast = std::exchange(last, manifest);
+      lastWritten = fs::last_write_time(path, ec);
+    }
+    for (const cache::ManifestEntry& e : manifest.value_or(cache::Manifest{}).files) {
       const fs::path file = outDir / e.path;
       std::error_code ec;
       if (!frameFile(e.path) || !fs::is_regular_file(file, ec) || fs::file_size(file, ec) != e.bytes || ec)
         continue;
-      if (std::any_of(keep.begin(), keep.end(), [&](const fs::path& k) {
-            std::error_code kec;
-            return fs::equivalent(k, file, kec) && !kec;
-          }))
-        continue;
+      if (kept(file)) continue;
       if (fs::remove(file, ec) && !ec) ++removed;
     }
     removeQuietly(path);
   }
+  // A run killed while it wrote a frame left that frame's files without a manifest: they
+  // are named as the last manifest's are, with the next frame's number (or PDC ticks one
+  // frame's step on), and were written after that manifest. Without this, a shorter run
+  // into the folder left them at the end of its sequence.
+  if (last)
+    for (const fs::path& file : nextFrameFiles(*last, beforeLast)) {
+      std::error_code ec;
+      const fs::path path = outDir / file;
+      if (!frameFile(file) || !fs::is_regular_file(path, ec) || ec ||
+          fs::last_write_time(path, ec) < lastWritten || ec || kept(path))
+        continue;
+      if (fs::remove(path, ec) && !ec) ++removed;
+    }
   for (const std::int64_t f : cache::checkpointFrames(outDir, sceneName))
     removeQuietly(cache::checkpointPath(outDir, sceneName, f));
   // A frame folder left empty goes too (a folder exists only for a format written);

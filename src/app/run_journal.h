@@ -82,7 +82,10 @@ void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sc
 /// frames past this run's end) stayed beside this run's, and Maya or Houdini, which read
 /// a sequence by file name, played the two runs mixed. Kept: what the manifests list
 /// elsewhere (the objects' meshes in `<scene>Geo/`), files of another size (edited
-/// since), and any of `keep` (the scene's input files). Returns how many frame files went.
+/// since), and any of `keep` (the scene's input files). Also removed: the files of the
+/// frame a killed run was writing (no manifest names them): those named as the last
+/// manifest's files with the next frame's number, or PDC ticks one frame's step on, and
+/// written after that manifest. Returns how many frame files went.
 std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
                              const std::vector<std::filesystem::path>& keep);
 

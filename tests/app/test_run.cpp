@@ -1,5 +1,6 @@
 // `softsub run` end to end: the files it writes, what they hold, determinism, formats,
 // the seed's flags, and what it reports.
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -509,6 +510,35 @@ TEST(Run, AFreshRunRemovesTheEarlierRunsFramesOnly) {
   ASSERT_EQ(runSoftsub("run -q shot.scene --frames 2 --out o --resume", tmp.path()).code, 0);
   EXPECT_TRUE(fs::exists(tmp / "o/shot.0001.sim"));
   EXPECT_TRUE(fs::exists(tmp / "o/pdc/jamShape.400.pdc"));
+}
+
+// A run killed while it wrote a frame left that frame's files and no manifest for it. A
+// fresh, shorter run removes them as well: they are named as the last manifest's files
+// with the next frame's number (PDC: ticks one step on) and were written after it. A
+// file of that name older than the last manifest is not the killed run's and stays.
+TEST(Run, AFreshRunRemovesTheFrameAKilledRunWasWriting) {
+  TempDir tmp;
+  std::ofstream(tmp / "shot.scene")
+      << "<Scene version=\"1\"><Simulation><FramesPerSecond>30</FramesPerSecond></Simulation><Environment/>\n"
+         "<Fluid><Name>goo</Name><Particles>0 8 0  1 8 0</Particles></Fluid></Scene>\n";
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 4 --formats sim,pdc,ply,mesh --out o", tmp.path()).code,
+            0);
+  // Killed before frame 4's manifest: its files are there, its manifest is not.
+  fs::remove(tmp / "o/manifest/shot.0004.manifest");
+  const std::vector<fs::path> frame4{"o/shot.0004.sim", "o/pdc/gooShape.800.pdc", "o/ply/shot.0004.ply",
+                                     "o/mesh/goo.0004.obj"};
+  for (const fs::path& f : frame4) ASSERT_TRUE(fs::exists(tmp / f)) << f;
+  // One of them older than frame 3's manifest: not the killed run's.
+  const auto old = fs::last_write_time(tmp / "o/manifest/shot.0003.manifest") - std::chrono::hours(1);
+  fs::last_write_time(tmp / "o/ply/shot.0004.ply", old);
+  ASSERT_EQ(runSoftsub("run -q shot.scene --frames 2 --formats sim,pdc,ply,mesh --out o", tmp.path()).code,
+            0);
+  EXPECT_FALSE(fs::exists(tmp / "o/shot.0004.sim"));
+  EXPECT_FALSE(fs::exists(tmp / "o/pdc/gooShape.800.pdc"));
+  EXPECT_FALSE(fs::exists(tmp / "o/mesh/goo.0004.obj"));
+  EXPECT_TRUE(fs::exists(tmp / "o/ply/shot.0004.ply"));
+  EXPECT_EQ(listFiles(tmp / "o/pdc"),
+            (std::vector<std::string>{"gooShape.0.pdc", "gooShape.200.pdc", "gooShape.400.pdc"}));
 }
 
 // A scene kept in one of the run's frame folders could be named like a frame there.
