@@ -104,7 +104,7 @@ class RigidSolver {
   void reduceContacts();
   void prepareContacts(double dt, const Vec3& gravity);
   void solveVelocities();
-  void solveVelocitiesWithoutGain();
+  void solveVelocitiesWithoutGain(const Vec3& gravity);
   void solvePositions(double dt);
   /// True when a dynamic body took an impulse.
   bool pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
@@ -121,7 +121,13 @@ class RigidSolver {
   // The energy check (solveVelocitiesWithoutGain): each dynamic body's island, and per
   // island its energy before the solve and the scale of its impact targets.
   std::vector<std::int32_t> islandRoot_, island_;
-  std::vector<double> islandEnergy_, islandAfter_, islandScale_, islandLo_, islandHi_;
+  enum class IslandSearch : std::uint8_t { First, AtZero, Bracket, Final, Settled };
+  std::vector<double> islandKinetic_, islandEnergy_, islandAfter_, islandScale_, islandLo_, islandHi_,
+      islandGLo_, islandGHi_;
+  std::vector<std::int8_t> islandSide_, islandImpact_;
+  std::vector<IslandSearch> islandState_;
+  std::vector<Vec3> startVel_, startOmega_;  ///< per body: velocities at the start of the substep
+  std::vector<double> lift_;                 ///< per body: the height the overlap fix will lift it by
   std::vector<Vec3> savedVel_, savedOmega_;
 };
 
