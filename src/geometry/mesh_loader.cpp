@@ -470,41 +470,44 @@ class ConfinedIOSystem : public MeshIOSystem {
 }  // namespace
 
 std::size_t orientConsistently(TriangleMesh& mesh) {
-  // Each edge's uses, as (triangle, +1 if the triangle runs it from the lower vertex to
-  // the higher, -1 otherwise); only edges with exactly two uses join triangles.
+  // Each edge's uses (count) and its first two, as (triangle, +1 if the triangle runs it
+  // from the lower vertex to the higher, -1 otherwise); only edges with exactly two uses
+  // join triangles.
   const std::size_t n = mesh.triangles.size();
   struct Use {
     std::uint32_t triangle;
     std::int32_t direction;
   };
-  std::unordered_map<std::uint64_t, std::array<Use, 2>> edges;
-  std::unordered_map<std::uint64_t, std::uint32_t> count;
+  struct Edge {
+    std::uint32_t count = 0;
+    std::array<Use, 2> uses{};
+  };
+  std::unordered_map<std::uint64_t, Edge> edges;
   edges.reserve(n * 2);
-  count.reserve(n * 2);
   for (std::uint32_t t = 0; t < n; ++t)
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
       if (a == b) continue;
-      const std::uint64_t key = a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
-      const std::uint32_t c = count[key]++;
-      if (c < 2) edges[key][c] = Use{t, a < b ? 1 : -1};
+      Edge& e = edges[a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a];
+      if (e.count < 2) e.uses[e.count] = Use{t, a < b ? 1 : -1};
+      ++e.count;
     }
   // Neighbours through shared edges, and whether the two run it the same way (then one
   // of them must turn).
   std::vector<std::uint32_t> first(n + 1, 0);
-  for (const auto& [key, uses] : edges)
-    if (count[key] == 2) {
-      ++first[uses[0].triangle + 1];
-      ++first[uses[1].triangle + 1];
+  for (const auto& [key, e] : edges)
+    if (e.count == 2) {
+      ++first[e.uses[0].triangle + 1];
+      ++first[e.uses[1].triangle + 1];
     }
   for (std::size_t t = 0; t < n; ++t) first[t + 1] += first[t];
   std::vector<std::pair<std::uint32_t, bool>> next(first[n]);
   std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-  for (const auto& [key, uses] : edges)
-    if (count[key] == 2) {
-      const bool same = uses[0].direction == uses[1].direction;
-      next[fill[uses[0].triangle]++] = {uses[1].triangle, same};
-      next[fill[uses[1].triangle]++] = {uses[0].triangle, same};
+  for (const auto& [key, e] : edges)
+    if (e.count == 2) {
+      const bool same = e.uses[0].direction == e.uses[1].direction;
+      next[fill[e.uses[0].triangle]++] = {e.uses[1].triangle, same};
+      next[fill[e.uses[1].triangle]++] = {e.uses[0].triangle, same};
     }
   // Breadth-first over each part: turn[u] = turn[t] xor same.
   std::vector<std::int8_t> turn(n, -1);

@@ -433,11 +433,12 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
         out[island_[b]] += 0.5 * (vel_[b].squaredNorm() / invMass_[b] +
                                   omega_[b].dot(invInertia_[b].ldlt().solve(omega_[b])));
   };
-  energies(islandKinetic_);
-  islandEnergy_ = islandKinetic_;
-  islandImpact_.assign(static_cast<std::size_t>(islands), 0);
+  energies(islandAfter_);
+  islands_.assign(static_cast<std::size_t>(islands), Island{});
+  for (std::size_t k = 0; k < islands_.size(); ++k)
+    islands_[k].kinetic = islands_[k].budget = islandAfter_[k];
   for (const Contact& c : contacts_)
-    if (c.impactN != 0 || c.impactT1 != 0) islandImpact_[island_[c.a]] = 1;
+    if (c.impactN != 0 || c.impactT1 != 0) islands_[island_[c.a]].impact = true;
   // The overlap fix lifts a body out of what it sank into at the impact, over this and
   // the next few substeps: that height is energy too, which the bounce must not also
   // give back (a box bouncing with e = 1 and no friction gained 21% in 34 s, and a ball
@@ -456,7 +457,7 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
             std::max(lift_[c.b], (1 - share) * (c.depth - c.slop) * std::max(0.0, -c.normal.dot(up)));
     }
     for (std::size_t b = 0; b < nb; ++b)
-      if (island_[b] >= 0) islandEnergy_[island_[b]] -= g * lift_[b] / invMass_[b];
+      if (island_[b] >= 0) islands_[island_[b]].budget -= g * lift_[b] / invMass_[b];
   }
   // Per island: the scale its targets were last solved with, and the bracket of the
   // scale where the energy after the impact meets the budget: lo gains nothing (g(lo) <=
@@ -466,71 +467,59 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
   // is within 1e-6 of its energy or the bracket is narrower than 1e-4 (a bisection to
   // 1/32, the first form of this check, cut a sphere's e = 1 to 31/32 for a gain of
   // rounding's size: 6% of the energy at each bounce).
-  const std::size_t ni = static_cast<std::size_t>(islands);
-  islandScale_.assign(ni, 1.0);
-  islandLo_.assign(ni, 0.0);
-  islandHi_.assign(ni, 1.0);
-  islandGLo_.assign(ni, 0.0);
-  islandGHi_.assign(ni, 0.0);
-  islandSide_.assign(ni, 0);
-  islandState_.assign(ni, IslandSearch::First);
   savedVel_ = vel_;
   savedOmega_ = omega_;
   for (int round = 0;; ++round) {
     solveVelocities();
     energies(islandAfter_);
     bool again = false;
-    for (std::size_t k = 0; k < ni; ++k) {
-      IslandSearch& state = islandState_[k];
-      if (state == IslandSearch::Settled) continue;
-      double& scale = islandScale_[k];
-      const double energy = islandKinetic_[k];
-      const double g = islandAfter_[k] - islandEnergy_[k];
-      const bool gained = g > 1e-9 * energy;
-      if (state == IslandSearch::First) {        // at scale 1
-        if (!gained || islandImpact_[k] == 0) {  // no impact: no target to scale
-          state = IslandSearch::Settled;
+    for (std::size_t k = 0; k < islands_.size(); ++k) {
+      Island& is = islands_[k];
+      if (is.search == Search::Settled) continue;
+      const double g = islandAfter_[k] - is.budget;
+      const bool gained = g > 1e-9 * is.kinetic;
+      if (is.search == Search::First) {  // at scale 1
+        if (!gained || !is.impact) {     // no impact: no target to scale
+          is.search = Search::Settled;
           continue;
         }
-        islandHi_[k] = 1.0;
-        islandGHi_[k] = g;
-        scale = 0.0;
-        state = IslandSearch::AtZero;
+        is.hi = 1.0;
+        is.gHi = g;
+        is.scale = 0.0;
+        is.search = Search::AtZero;
         again = true;
         continue;
       }
-      if (state == IslandSearch::AtZero) {
+      if (is.search == Search::AtZero) {
         if (gained) {  // even inelastic: nothing left to scale
-          state = IslandSearch::Settled;
+          is.search = Search::Settled;
           continue;
         }
-        islandGLo_[k] = g;
-        state = IslandSearch::Bracket;
-      } else if (state == IslandSearch::Final) {
-        state = IslandSearch::Settled;
+        is.gLo = g;
+        is.search = Search::Bracket;
+      } else if (is.search == Search::Final) {
+        is.search = Search::Settled;
         continue;
       } else if (gained) {  // Bracket
-        islandHi_[k] = scale;
-        islandGHi_[k] = g;
-        if (islandSide_[k] == 1) islandGLo_[k] *= 0.5;
-        islandSide_[k] = 1;
+        is.hi = is.scale;
+        is.gHi = g;
+        if (is.side == 1) is.gLo *= 0.5;
+        is.side = 1;
       } else {
-        islandLo_[k] = scale;
-        islandGLo_[k] = g;
-        if (islandSide_[k] == -1) islandGHi_[k] *= 0.5;
-        islandSide_[k] = -1;
+        is.lo = is.scale;
+        is.gLo = g;
+        if (is.side == -1) is.gHi *= 0.5;
+        is.side = -1;
       }
-      const double lo = islandLo_[k], hi = islandHi_[k];
-      if (!gained && (-islandGLo_[k] <= 1e-6 * energy || hi - lo < 1e-4) && scale == lo) {
-        state = IslandSearch::Settled;  // this solve was at lo
+      if (!gained && (-is.gLo <= 1e-6 * is.kinetic || is.hi - is.lo < 1e-4) && is.scale == is.lo) {
+        is.search = Search::Settled;  // this solve was at lo
         continue;
       }
-      if (hi - lo < 1e-4 || round >= 12) {
-        scale = lo;
-        state = IslandSearch::Final;
+      if (is.hi - is.lo < 1e-4 || round >= 12) {
+        is.scale = is.lo;
+        is.search = Search::Final;
       } else {
-        const double step = islandGLo_[k] / (islandGLo_[k] - islandGHi_[k]);
-        scale = lo + std::clamp(step, 0.001, 0.999) * (hi - lo);
+        is.scale = is.lo + std::clamp(is.gLo / (is.gLo - is.gHi), 0.001, 0.999) * (is.hi - is.lo);
       }
       again = true;
     }
@@ -538,7 +527,7 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
     vel_ = savedVel_;
     omega_ = savedOmega_;
     for (Contact& c : contacts_) {
-      const double scale = islandScale_[island_[c.a]];
+      const double scale = islands_[island_[c.a]].scale;
       c.targetN = scale * c.impactN;
       c.targetT1 = scale * c.impactT1;
       c.lambdaN = c.lambdaT1 = c.lambdaT2 = 0;
@@ -634,11 +623,11 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, Parti
     }
     // Free motion: forces, torques and gravity for one substep (the velocities before it
     // kept for the impact law).
+    invInertia_[b] = worldInverseInertia(info, st);  // the free motion does not turn the body
     startVel_[b] = st.velocity;
-    startOmega_[b] = worldInverseInertia(info, st) * st.angularMomentum;
+    startOmega_[b] = invInertia_[b] * st.angularMomentum;
     st.velocity += (force_[b] * info.inverseMass + gravity) * dt;
     st.angularMomentum += torque_[b] * dt;
-    invInertia_[b] = worldInverseInertia(info, st);
     invMass_[b] = info.inverseMass;
     vel_[b] = st.velocity;
     omega_[b] = invInertia_[b] * st.angularMomentum;

@@ -118,14 +118,21 @@ class RigidSolver {
   std::vector<Vec3> pos_, vel_, omega_, pseudoVel_, pseudoOmega_;
   std::vector<Mat3> rot_, invInertia_;
   std::vector<double> invMass_;
-  // The energy check (solveVelocitiesWithoutGain): each dynamic body's island, and per
-  // island its energy before the solve and the scale of its impact targets.
+  // The energy check (solveVelocitiesWithoutGain): each dynamic body's island (-1: static),
+  // and per island its budget and the search for the scale of its impact targets.
+  enum class Search : std::uint8_t { First, AtZero, Bracket, Final, Settled };
+  struct Island {
+    double kinetic = 0;                       ///< kinetic energy before the solve
+    double budget = 0;                        ///< what it may have after: kinetic less the overlap fix's lift
+    bool impact = false;                      ///< some contact has an impact target (else nothing to scale)
+    double scale = 1;                         ///< of the impact targets, in the last solve
+    double lo = 0, hi = 1, gLo = 0, gHi = 0;  ///< the bracket and its energies less the budget
+    std::int8_t side = 0;  ///< which end the last solve moved (-1 lo, 1 hi): the Illinois step
+    Search search = Search::First;
+  };
   std::vector<std::int32_t> islandRoot_, island_;
-  enum class IslandSearch : std::uint8_t { First, AtZero, Bracket, Final, Settled };
-  std::vector<double> islandKinetic_, islandEnergy_, islandAfter_, islandScale_, islandLo_, islandHi_,
-      islandGLo_, islandGHi_;
-  std::vector<std::int8_t> islandSide_, islandImpact_;
-  std::vector<IslandSearch> islandState_;
+  std::vector<Island> islands_;
+  std::vector<double> islandAfter_;
   std::vector<Vec3> startVel_, startOmega_;  ///< per body: velocities at the start of the substep
   std::vector<double> lift_;                 ///< per body: the height the overlap fix will lift it by
   std::vector<Vec3> savedVel_, savedOmega_;
