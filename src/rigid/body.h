@@ -41,6 +41,18 @@ struct BodyState {
   Vec3 angularMomentum{0, 0, 0};   ///< about the centre of mass, world axes
 };
 
+/// What one contact pushed with in the last substep, kept for the next (warm start): the
+/// sequential impulses then start from last substep's answer instead of from zero, so a
+/// stack or a heavy body on a light one is held by impulses that converge over substeps,
+/// not only within one. Part of the State (checkpoints keep it, so a resumed run
+/// continues bit for bit).
+struct ContactMemory {
+  std::int32_t a = 0, b = -1;  ///< body indices (b = -1: a wall)
+  std::int32_t wall = -1;      ///< the wall when b = -1 (Contact::wall)
+  Vec3 pointInA{0, 0, 0};      ///< the contact point, body a's own axes, from its centre of mass
+  Vec3 force{0, 0, 0};         ///< the impulse on a (normal and friction, world axes) divided by the substep
+};
+
 /// The inverse inertia tensor in world space, R I⁻¹ Rᵀ (the seed's similarity transform).
 [[nodiscard]] inline Mat3 worldInverseInertia(const BodyInfo& b, const BodyState& s) {
   const Mat3 r = s.orientation.toRotationMatrix();

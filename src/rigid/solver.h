@@ -61,6 +61,7 @@ struct Contact {
   double targetN = 0, targetT1 = 0;
   double impactN = 0, impactT1 = 0;  ///< the impact law's targets, before an energy check scales them
   double lambdaN = 0, lambdaT1 = 0, lambdaT2 = 0, lambdaP = 0;
+  double warmN = 0, warmT1 = 0, warmT2 = 0;  ///< where the impulses start: last substep's at this point
 };
 
 /// Slots of a pair of particles of which at least one belongs to a body, of two
@@ -82,9 +83,10 @@ class RigidSolver {
   /// contact distance that involves a body; `fluidInverseMass` and `fluidRadius` give,
   /// per material, the mass and radius of fluid particles. Fluid particles found inside
   /// a body are put back on its surface and lose their approaching velocity (the body
-  /// takes the opposite impulse).
-  void step(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
-            std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+  /// takes the opposite impulse). `memory` holds the contact impulses of the last
+  /// substep, which this one starts from, and receives this substep's (State::contacts).
+  void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
+            ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
             std::span<const float> materialRadius, const Walls* walls, const Vec3& gravity, double dt);
 
   /// The contacts of the last step (tests, diagnostics).
@@ -103,6 +105,13 @@ class RigidSolver {
                    std::uint32_t b, const Vec3& d, double r, double dt, Contact& c) const;
   void reduceContacts();
   void prepareContacts(double dt, const Vec3& gravity);
+  /// Each contact's starting impulses from the one of last substep's contacts (same
+  /// bodies or wall) whose point on body a lies nearest, within its particle radius.
+  void recallImpulses(const BodySet& set, std::span<const ContactMemory> memory, double dt);
+  /// This substep's solved impulses into `memory`.
+  void rememberImpulses(std::vector<ContactMemory>& memory, double dt) const;
+  /// Sets every contact's impulses to its starting ones and applies them.
+  void applyWarmStart();
   void solveVelocities();
   void solveVelocitiesWithoutGain(const Vec3& gravity);
   void solvePositions(double dt);
@@ -136,6 +145,7 @@ class RigidSolver {
   std::vector<Vec3> startVel_, startOmega_;  ///< per body: velocities at the start of the substep
   std::vector<double> lift_;                 ///< per body: the height the overlap fix will lift it by
   std::vector<Vec3> savedVel_, savedOmega_;
+  std::vector<char> recalled_;  ///< per memory entry: taken by a contact of this substep
 };
 
 }  // namespace softsub::rigid

@@ -14,11 +14,13 @@ namespace softsub::solver {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'O', 'F', 'T', 'C', 'K', 'P', 'T'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;        // 2: the bodies' contact memory after the bodies
+constexpr std::uint32_t kOldestVersion = 1;  // 1: no contact memory (read as none)
 constexpr std::uint32_t kForcesValid = 1;
 constexpr std::uint32_t kHasReference = 2;
 constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8 + 8;
 constexpr std::size_t kBodyDoubles = 13;  // position 3, orientation w x y z, velocity 3, angular momentum 3
+constexpr std::size_t kContactBytes = 3 * 4 + 6 * 8;  // a, b, wall; point in a xyz, force xyz
 
 template <class T>
 void put(std::string& out, const T& v) {
@@ -65,7 +67,9 @@ class Reader {
 };
 
 struct Header {
+  std::uint32_t version = 0;
   std::uint32_t flags = 0;
+  std::uint64_t contacts = 0;
   CheckpointInfo info;
 };
 
@@ -74,8 +78,9 @@ Header readHeader(Reader& r, std::string_view bytes) {
   for (char& c : magic) c = r.get<char>();
   if (std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail("is not a softsub checkpoint");
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion) r.fail(fmt::format("has version {}", version));
+  if (version < kOldestVersion || version > kVersion) r.fail(fmt::format("has version {}", version));
   Header h;
+  h.version = version;
   h.flags = r.get<std::uint32_t>();
   h.info.frame = r.get<std::int64_t>();
   h.info.fingerprint = r.get<std::uint64_t>();
@@ -88,10 +93,17 @@ Header readHeader(Reader& r, std::string_view bytes) {
   if (hashBytes(bytes.substr(0, bytes.size() - 8)) != stored) r.fail("is damaged (checksum mismatch)");
   const std::uint64_t perParticle = 9 * 4 + 2 + 4 + 4 + ((h.flags & kHasReference) ? 12 : 0);
   const std::uint64_t payload = bytes.size() - kHeaderBytes - 8;
-  if (h.info.particles > payload / perParticle ||
-      h.info.bodies > payload / (kBodyDoubles * 8) ||
-      h.info.particles * perParticle + h.info.bodies * kBodyDoubles * 8 != payload)
-    r.fail("has the wrong size for its particle and object counts");
+  const auto wrongSize = [&] { r.fail("has the wrong size for its particle and object counts"); };
+  if (h.info.particles > payload / perParticle || h.info.bodies > payload / (kBodyDoubles * 8)) wrongSize();
+  std::uint64_t fixed = h.info.particles * perParticle + h.info.bodies * kBodyDoubles * 8;
+  if (h.version >= 2) {  // the contact count follows the bodies
+    if (fixed > payload || payload - fixed < 8) wrongSize();
+    std::memcpy(&h.contacts, bytes.data() + kHeaderBytes + fixed, 8);
+    fixed += 8;
+    if (h.contacts > (payload - fixed) / kContactBytes) wrongSize();
+    fixed += h.contacts * kContactBytes;
+  }
+  if (fixed != payload) wrongSize();
   if (h.info.frame < 0) r.fail("has a negative frame");
   return h;
 }
@@ -105,7 +117,8 @@ void encodeCheckpoint(const Simulation& sim, std::uint64_t fingerprint, std::str
   const bool hasRef = !ref.x.empty();
   const std::size_t n = s.size();
   out.clear();
-  out.reserve(kHeaderBytes + n * (9 * 4 + 10 + (hasRef ? 12 : 0)) + st.bodies.size() * kBodyDoubles * 8 + 8);
+  out.reserve(kHeaderBytes + n * (9 * 4 + 10 + (hasRef ? 12 : 0)) + st.bodies.size() * kBodyDoubles * 8 + 8 +
+              st.contacts.size() * kContactBytes + 8);
   out.append(kMagic, sizeof kMagic);
   put(out, kVersion);
   put(out, static_cast<std::uint32_t>((st.forcesValid ? kForcesValid : 0) | (hasRef ? kHasReference : 0)));
@@ -133,6 +146,15 @@ void encodeCheckpoint(const Simulation& sim, std::uint64_t fingerprint, std::str
                                     b.orientation.z(),     b.velocity.x(),        b.velocity.y(),
                                     b.velocity.z(),        b.angularMomentum.x(), b.angularMomentum.y(),
                                     b.angularMomentum.z()};
+    putArray(out, std::span<const double>(v));
+  }
+  put(out, static_cast<std::uint64_t>(st.contacts.size()));
+  for (const rigid::ContactMemory& c : st.contacts) {
+    put(out, c.a);
+    put(out, c.b);
+    put(out, c.wall);
+    const double v[6] = {c.pointInA.x(), c.pointInA.y(), c.pointInA.z(),
+                         c.force.x(),    c.force.y(),    c.force.z()};
     putArray(out, std::span<const double>(v));
   }
   put(out, hashBytes(out));
@@ -183,6 +205,19 @@ void restoreCheckpoint(Simulation& sim, std::string_view bytes, std::uint64_t fi
     b.orientation = Quat(v[3], v[4], v[5], v[6]);
     b.velocity = {v[7], v[8], v[9]};
     b.angularMomentum = {v[10], v[11], v[12]};
+  }
+  if (h.version >= 2) {
+    if (r.get<std::uint64_t>() != h.contacts) r.fail("is damaged (contact count)");
+    st.contacts.resize(h.contacts);
+    for (rigid::ContactMemory& c : st.contacts) {
+      c.a = r.get<std::int32_t>();
+      c.b = r.get<std::int32_t>();
+      c.wall = r.get<std::int32_t>();
+      double v[6];
+      for (double& x : v) x = r.get<double>();
+      c.pointInA = {v[0], v[1], v[2]};
+      c.force = {v[3], v[4], v[5]};
+    }
   }
   st.frame = h.info.frame;
   st.forcesValid = (h.flags & kForcesValid) != 0;

@@ -91,6 +91,7 @@ struct Model {
 struct State {
   ParticleStore particles;
   std::vector<rigid::BodyState> bodies;  ///< one per Model::bodies.bodies
+  std::vector<rigid::ContactMemory> contacts;  ///< the bodies' contact impulses of the last substep
   std::int64_t frame = 0;     ///< frames completed; the state is at time frame / fps
   bool forcesValid = false;   ///< store.f holds the forces of the current positions
 };

@@ -275,8 +275,9 @@ void Simulation::listRigidPairs() {
 
 void Simulation::stepBodies(double dt) {
   if (model_.bodies.empty()) return;
-  rigid_.step(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
-              materialRadius_, model_.container ? &*model_.container : nullptr, model_.gravity, dt);
+  rigid_.step(model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_,
+              materialInverseMass_, materialRadius_, model_.container ? &*model_.container : nullptr,
+              model_.gravity, dt);
 }
 
 namespace {
@@ -793,6 +794,12 @@ void Simulation::restore(State state, std::vector<float> refX, std::vector<float
     if (!b.position.allFinite() || !b.velocity.allFinite() || !b.angularMomentum.allFinite() ||
         !b.orientation.coeffs().allFinite())
       throw std::invalid_argument("the checkpoint holds a body state that is not finite");
+  const auto nb = static_cast<std::int32_t>(state.bodies.size());
+  for (const rigid::ContactMemory& c : state.contacts)
+    if (c.a < 0 || c.a >= nb || c.b < -1 || c.b >= nb || c.b == c.a ||
+        (c.b == -1) != (c.wall >= 0 && c.wall < 6) || (c.b >= 0 && c.wall != -1) || !c.pointInA.allFinite() ||
+        !c.force.allFinite())
+      throw std::invalid_argument("the checkpoint holds a contact that does not fit the scene's objects");
 
   // Rebuild the grid and list from the positions they were built from: the store is
   // still in the order that build sorted it into, so the grid finds it sorted and the

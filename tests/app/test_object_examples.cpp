@@ -2,6 +2,7 @@
 // their full length and checked on their output files only: the `.sim` frames and the
 // meshes in `<scene>Geo/`, as a package importing them would see them.
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -169,6 +170,33 @@ TEST(ObjectExamples, ViscousSubstancesSplashAroundThePostsButNeverIntoThem) {
   };
   EXPECT_GT(meanX(end.frame.fluids[0]) - meanX(start.frame.fluids[0]), 5.0);
   for (const FluidSnapshot& f : end.frame.fluids) EXPECT_LT(maxY(f), 12.0) << f.name << " has landed";
+}
+
+// Bodies resting on bodies under a load of mud: the tower and the heavy block stay
+// stacked, flat, at their heights (warm-started contacts; before them the run blew up at
+// frame 76, the block sinking through the pallet and the tower toppling).
+TEST(ObjectExamples, ACrateStackAndAHeavyBlockStandOnALightPallet) {
+  const ObjectRun run("crate-stack");
+  const cache::SimFile start = run.frame(0), end = run.frame(run.lastFrame());
+  ASSERT_EQ(end.frame.objects.size(), 5u);
+  const auto up = [](const ObjectSnapshot& o) {
+    const Quat q(o.rotation[0], o.rotation[1], o.rotation[2], o.rotation[3]);
+    return (q * Vec3::UnitY()).y();
+  };
+  for (std::size_t b = 0; b < end.frame.objects.size(); ++b) {
+    const ObjectSnapshot &o = end.frame.objects[b], &o0 = start.frame.objects[b];
+    EXPECT_NEAR(o.position[1], o0.position[1], 0.02) << o.name << " rests at its height";
+    EXPECT_GT(up(o), std::cos(1.0 * std::numbers::pi / 180)) << o.name << " stays flat";
+  }
+  // pallet, crate1..3, iron: each crate's centre over the one below, the block's over the pallet.
+  const auto over = [&](std::size_t upper, std::size_t lower, double half) {
+    const Vec3 d = positionOf(end.frame.objects[upper]) - positionOf(end.frame.objects[lower]);
+    EXPECT_LT(std::max(std::abs(d.x()), std::abs(d.z())), half) << end.frame.objects[upper].name;
+  };
+  over(2, 1, 1.25);
+  over(3, 2, 1.25);
+  over(1, 0, 5 - 1.25);
+  over(4, 0, 5 - 1);
 }
 
 // 5.0.3: a wall of soft substance stops fast heavy objects.

@@ -13,6 +13,7 @@ namespace {
 struct TwoBodies {
   BodySet set;
   std::vector<BodyState> states;
+  std::vector<ContactMemory> memory;
   ParticleStore store;
   RigidSolver solver;
 
@@ -45,7 +46,7 @@ struct TwoBodies {
     solver.writeParticles(set, states, store);
     std::vector<SlotPair> pairs{{0, 1}};
     const std::vector<float> none;
-    solver.step(set, states, store, pairs, none, none, nullptr, Vec3::Zero(), dt);
+    solver.step(set, states, memory, store, pairs, none, none, nullptr, Vec3::Zero(), dt);
   }
 };
 

@@ -1,6 +1,7 @@
 // Checkpoints (issue #7): a simulation restored from a checkpoint continues bit for bit
 // as the one that wrote it, for every integrator, with bodies and with adaptive
 // substeps; damaged or foreign checkpoints are refused.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -85,7 +86,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"softsub-demo.scene", scene::Integrator::ExplicitEuler, true},
                       Case{"box-on-jelly.scene", scene::Integrator::SymplecticEuler, false},
                       Case{"box-on-jelly.scene", scene::Integrator::VelocityVerlet, true},
-                      Case{"wall-impact.scene", scene::Integrator::SymplecticEuler, false}),
+                      Case{"wall-impact.scene", scene::Integrator::SymplecticEuler, false},
+                      // Bodies resting on bodies from the first substep: the contact memory.
+                      Case{"crate-stack.scene", scene::Integrator::SymplecticEuler, false}),
     caseName);
 
 class Refuse : public ::testing::Test {
@@ -162,7 +165,7 @@ TEST_F(Refuse, CraftedCheckpointsWithAValidChecksumAreStillRefusedAndChangeNothi
   // The store's first and last slots swapped whole (positions, velocities, ids, owners,
   // list reference): every particle is consistent, but the reference positions no longer
   // come in the grid's order, so the list would not be the one the run had.
-  ASSERT_EQ(bytes_.size(), idAt + 4 * n + 3 * 4 * n + 8) << "the run holds a pair list";
+  ASSERT_EQ(bytes_.size(), idAt + 4 * n + 3 * 4 * n + 8 + 8) << "the run holds a pair list (and no contacts)";
   std::string order = bytes_;
   const auto swapSlots = [&](std::size_t base, std::size_t width) {
     std::string first = order.substr(base, width);
@@ -175,6 +178,61 @@ TEST_F(Refuse, CraftedCheckpointsWithAValidChecksumAreStillRefusedAndChangeNothi
   swapSlots(idAt, 4);
   for (int k = 0; k < 3; ++k) swapSlots(idAt + 4 * n + 4 * n * k, 4);
   EXPECT_NE(problemOf(resealed(order)).find("order does not match"), std::string::npos);
+}
+
+// The bodies' contact memory (version 2) is checked as the rest is: a contact that names
+// an object the scene does not have is refused; a version 1 checkpoint (no contact
+// memory) is still read, its contacts starting from zero.
+TEST(CheckpointContacts, AreCheckedAndAVersionOneCheckpointHasNone) {
+  scene::Compiled c = scene::compile(scene::readSceneFile(example("crate-stack.scene")));
+  const Model model = c.model;
+  Simulation sim(model, std::move(c.state));
+  for (int f = 0; f < 2; ++f) sim.advanceFrame();
+  const std::size_t contacts = sim.state().contacts.size();
+  ASSERT_GT(contacts, 4u) << "crates resting on each other";
+  std::string bytes;
+  encodeCheckpoint(sim, 7, bytes);
+  constexpr std::size_t kContactBytes = 60;
+  const std::size_t countAt = bytes.size() - 8 - contacts * kContactBytes - 8;
+  std::uint64_t count;
+  std::memcpy(&count, bytes.data() + countAt, 8);
+  ASSERT_EQ(count, contacts);
+  const auto restore = [&](const std::string& b) -> std::string {
+    scene::Compiled fresh = scene::compile(scene::readSceneFile(example("crate-stack.scene")));
+    Simulation target(model, std::move(fresh.state));
+    try {
+      restoreCheckpoint(target, b, 7, "x");
+    } catch (const InputError& e) {
+      EXPECT_TRUE(target.state().contacts.empty()) << "a refused checkpoint changes nothing";
+      return e.problem();
+    }
+    EXPECT_EQ(target.state().bodies.size(), model.bodies.bodies.size());
+    return fmt::format("accepted with {} contacts", target.state().contacts.size());
+  };
+  EXPECT_EQ(restore(bytes), fmt::format("accepted with {} contacts", contacts));
+  // The first contact's body a set to one past the last body.
+  std::string wrong = bytes;
+  const auto past = static_cast<std::int32_t>(model.bodies.bodies.size());
+  std::memcpy(wrong.data() + countAt + 8, &past, 4);
+  EXPECT_NE(restore(resealed(wrong)).find("does not fit the scene's objects"), std::string::npos);
+  // A force that is not finite.
+  std::string nan = bytes;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::memcpy(nan.data() + countAt + 8 + 12 + 3 * 8, &inf, 8);
+  EXPECT_NE(restore(resealed(nan)).find("does not fit"), std::string::npos);
+  // A count the bytes do not hold.
+  std::string more = bytes;
+  const std::uint64_t bigger = contacts + 1;
+  std::memcpy(more.data() + countAt, &bigger, 8);
+  EXPECT_NE(restore(resealed(more)).find("wrong size"), std::string::npos);
+  // Version 1: the same bytes without the contact section.
+  std::string old = bytes.substr(0, countAt) + std::string(8, '\0');
+  const std::uint32_t one = 1, three = 3;
+  std::memcpy(old.data() + 8, &one, 4);
+  EXPECT_EQ(restore(resealed(old)), "accepted with 0 contacts");
+  std::string future = bytes;
+  std::memcpy(future.data() + 8, &three, 4);
+  EXPECT_EQ(restore(resealed(future)), "has version 3");
 }
 
 TEST(HashBytes, EveryByteAndTheSeedMatter) {

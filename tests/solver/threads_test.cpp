@@ -52,7 +52,7 @@ TEST_P(ThreadCount, EverySubstepIsBitwiseTheSameOnOneTwoAndThreeThreads) {
 
 INSTANTIATE_TEST_SUITE_P(Examples, ThreadCount,
                          ::testing::Values("softsub-demo.scene", "two-fluids.scene", "box-on-jelly.scene",
-                                           "wall-impact.scene"),
+                                           "wall-impact.scene", "crate-stack.scene"),
                          [](const auto& p) {
                            std::string n = p.param.substr(0, p.param.find('.'));
                            for (char& ch : n)

@@ -2,7 +2,7 @@
 // A simulation's state as raw bytes, for bitwise comparisons (threads, checkpoints) and
 // pinned hashes: every particle's position and velocity (and with `withForces` its
 // force) in slot order, the ids, then every body's position, velocity, angular momentum
-// and orientation (w, x, y, z).
+// and orientation (w, x, y, z), then the bodies' contact memory (State::contacts).
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +28,13 @@ inline std::vector<std::uint8_t> stateBytes(const solver::Simulation& sim, bool 
                           b.angularMomentum.x(), b.angularMomentum.y(), b.angularMomentum.z(),
                           b.orientation.w(),     b.orientation.x(),     b.orientation.y(),
                           b.orientation.z()};
+    append(v, sizeof v);
+  }
+  for (const rigid::ContactMemory& c : sim.state().contacts) {
+    const std::int32_t k[3] = {c.a, c.b, c.wall};
+    const double v[6] = {c.pointInA.x(), c.pointInA.y(), c.pointInA.z(),
+                         c.force.x(),    c.force.y(),    c.force.z()};
+    append(k, sizeof k);
     append(v, sizeof v);
   }
   return out;
