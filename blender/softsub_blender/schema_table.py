@@ -69,7 +69,7 @@ SCHEMA = {
         ('InitialAngularVelocity', 'vec3', 'degrees/s', '0 0 0', '3 finite numbers', 'angular velocity about the world axes'),
         ('NormalAttenuation', 'real', '-', '0.5', '[0, 1]', "restitution e at contacts with walls and objects (each side's mean)"),
         ('TangentAttenuation', 'real', '-', '0.1', '[0, 1]', "friction at contacts with walls and objects (each side's mean)"),
-        ('Mass', 'real', 'mass', '1', '> 0', 'mass of the whole body'),
+        ('Mass', 'real', 'mass', '1', '[1e-30, 1e+30]', "mass of the whole body (its inertia's inverse must stay finite)"),
         ('IsDynamic', 'bool', '-', 'true', 'true, false, 1, 0', 'false: a static body that never moves (an open mesh is fine then; its initial velocities are not used, with a warning)'),
     ],
     'Linear': [

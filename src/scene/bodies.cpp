@@ -177,43 +177,100 @@ geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDi
 
 namespace {
 
-// How many particles of each fluid (the slots before the bodies' in `store`, material =
-// fluid) lie in a voxel of `solid`, a closed body's volume fill at `spacing` (voxel centres
-// lo + (k + 0.5) spacing, in the scaled mesh's axes), the body placed at `position` turned
-// by `rotation` (a mesh point x lies at position + rotation x).
-std::vector<std::size_t> fluidInside(const std::vector<Vec3>& solid, const Vec3& lo, double spacing,
-                                     const Vec3& position, const Quat& rotation, const ParticleStore& store,
-                                     std::size_t fluidSlots, std::size_t fluids) {
-  std::vector<std::size_t> count(fluids, 0);
-  if (solid.empty()) return count;
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+// A closed body's volume fill (voxel centres lo + (k + 0.5) spacing, in the scaled
+// mesh's axes) placed at `position` turned by `rotation` (a mesh point x lies at
+// position + rotation x): which points of the world lie in it.
+class PlacedSolid {
+ public:
+  PlacedSolid(const std::vector<Vec3>& solid, const Vec3& lo, double spacing, const Vec3& position,
+              const Quat& rotation)
+      : lo_(lo), hi_(lo), spacing_(spacing), position_(position), back_(rotation.conjugate()) {
+    voxels_.reserve(solid.size());
+    for (const Vec3& p : solid) {
+      const Vec3 k = ((p - lo) / spacing).array() - 0.5;
+      voxels_.insert(key(std::llround(k.x()), std::llround(k.y()), std::llround(k.z())));
+      hi_ = hi_.cwiseMax(p);
+    }
+    hi_.array() += 0.5 * spacing;
+    centre_ = position + rotation * (0.5 * (lo_ + hi_));
+    reach2_ = 0.25 * (hi_ - lo_).squaredNorm();
+  }
+  [[nodiscard]] bool empty() const { return voxels_.empty(); }
+  /// 0: p is outside the fill; 1: in one of its voxels; 2: in a voxel whose six
+  /// neighbours are in the fill too (at least about half a voxel inside the surface).
+  [[nodiscard]] int depth(const Vec3& p) const {
+    // Most points lie beyond the box's bounding sphere: tested first, without a turn.
+    if (voxels_.empty() || (p - centre_).squaredNorm() > reach2_) return 0;
+    const Vec3 x = back_ * (p - position_);
+    if ((x.array() < lo_.array()).any() || (x.array() >= hi_.array()).any()) return 0;
+    const Vec3 k = (x - lo_) / spacing_;
+    const auto i = static_cast<std::int64_t>(k.x()), j = static_cast<std::int64_t>(k.y()),
+               l = static_cast<std::int64_t>(k.z());
+    if (!in(i, j, l)) return 0;
+    return in(i - 1, j, l) && in(i + 1, j, l) && in(i, j - 1, l) && in(i, j + 1, l) && in(i, j, l - 1) &&
+                   in(i, j, l + 1)
+               ? 2
+               : 1;
+  }
+
+ private:
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 |
            static_cast<std::uint64_t>(z);
+  }
+  [[nodiscard]] bool in(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return x >= 0 && y >= 0 && z >= 0 && voxels_.count(key(x, y, z)) != 0;
+  }
+  std::unordered_set<std::uint64_t> voxels_;
+  Vec3 lo_, hi_;
+  double spacing_;
+  Vec3 position_;
+  Quat back_;
+  Vec3 centre_{0, 0, 0};
+  double reach2_ = 0;
+};
+
+// Warnings for objects that start inside each other: the particles of one in an inner
+// voxel of the other's volume fill (a closed mesh's), both ways, one warning for each
+// pair where one of the two may move. Such bodies are pushed apart over the first
+// substeps, or, when one lies in the other's hollow middle (bodies keep only two layers
+// of particles), stay trapped there.
+void warnOverlappingBodies(const SceneDesc& desc, const rigid::BodySet& set,
+                           const std::vector<rigid::BodyState>& states,
+                           const std::vector<std::optional<PlacedSolid>>& solids,
+                           std::vector<std::string>& warnings) {
+  const std::size_t nb = set.bodies.size();
+  // How many of b's particles lie deep in a's fill.
+  const auto inside = [&](std::size_t b, std::size_t a) {
+    if (!solids[a]) return std::size_t{0};
+    const rigid::BodyInfo& B = set.bodies[b];
+    const Mat3 r = states[b].orientation.toRotationMatrix();
+    std::size_t n = 0;
+    for (std::uint32_t k = B.firstId - set.firstId; k < B.firstId - set.firstId + B.count; ++k)
+      if (solids[a]->depth(states[b].position + r * Vec3(set.ox[k], set.oy[k], set.oz[k])) == 2) ++n;
+    return n;
   };
-  std::unordered_set<std::uint64_t> voxels;
-  voxels.reserve(solid.size());
-  Vec3 hi = lo;
-  for (const Vec3& p : solid) {
-    const Vec3 k = ((p - lo) / spacing).array() - 0.5;
-    voxels.insert(key(std::llround(k.x()), std::llround(k.y()), std::llround(k.z())));
-    hi = hi.cwiseMax(p);
-  }
-  hi.array() += 0.5 * spacing;
-  const Quat back = rotation.conjugate();
-  // Most particles lie beyond the box's bounding sphere: tested first, without a turn.
-  const Vec3 centre = position + rotation * (0.5 * (lo + hi));
-  const double reach2 = 0.25 * (hi - lo).squaredNorm();
-  for (std::size_t i = 0; i < fluidSlots; ++i) {
-    const Vec3 p(store.px[i], store.py[i], store.pz[i]);
-    if ((p - centre).squaredNorm() > reach2) continue;
-    const Vec3 x = back * (p - position);
-    if ((x.array() < lo.array()).any() || (x.array() >= hi.array()).any()) continue;
-    const Vec3 k = (x - lo) / spacing;
-    if (voxels.count(key(static_cast<std::int64_t>(k.x()), static_cast<std::int64_t>(k.y()),
-                         static_cast<std::int64_t>(k.z()))) != 0)
-      ++count[store.material[i]];
-  }
-  return count;
+  for (std::size_t a = 0; a < nb; ++a)
+    for (std::size_t b = a + 1; b < nb; ++b) {
+      const rigid::BodyInfo &A = set.bodies[a], &B = set.bodies[b];
+      if (!A.dynamic && !B.dynamic) continue;
+      const double apart = (states[a].position - states[b].position).norm();
+      if (apart > A.farthest + B.farthest + 2 * (A.particleRadius + B.particleRadius)) continue;
+      const std::size_t bInA = inside(b, a), aInB = inside(a, b);
+      if (bInA == 0 && aInB == 0) continue;
+      const auto part = [&](const rigid::BodyInfo& x, std::size_t n, const rigid::BodyInfo& y) {
+        return fmt::format("{} of the {} particle(s) of '{}' lie inside '{}'", n, x.count, x.name, y.name);
+      };
+      const std::string what = bInA > 0 && aInB > 0 ? part(B, bInA, A) + " and " + part(A, aInB, B)
+                               : bInA > 0           ? part(B, bInA, A)
+                                                    : part(A, aInB, B);
+      warnings.push_back(fmt::format(
+          "Objects '{}' (line {}) and '{}' (line {}) start inside each other ({}): they are pushed apart "
+          "over "
+          "the first substeps, or, where one lies in the other's hollow middle (objects keep only two outer "
+          "layers of particles), it stays trapped there; move one of them",
+          A.name, desc.objects[a].line, B.name, desc.objects[b].line, what));
+    }
 }
 
 }  // namespace
@@ -264,6 +321,7 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
   for (std::size_t r = 0; r < rowKeys.size(); ++r) m.materials.push_back({0.0f, 0.0f, true});
 
   ParticleStore& store = state.particles;
+  std::vector<std::optional<PlacedSolid>> solids;  // per object, with warnings: its placed volume fill
   for (std::size_t o = 0; o < desc.objects.size(); ++o) {
     const ObjectDesc& od = desc.objects[o];
     geometry::TriangleMesh mesh = objectMesh(od, desc.baseDir);
@@ -324,11 +382,17 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
       const Mat3 r = st.orientation.toRotationMatrix();
       st.angularMomentum = r * mass.inertia * r.transpose() * omega;
     }
-    if (warnings != nullptr && nf > 0) {
+    if (warnings != nullptr) {
       const Aabb box = scaled.bounds();
-      const std::vector<std::size_t> inside =
-          fluidInside(solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), spacing, od.initialPosition,
-                      st.orientation, store, set.firstId, nf);
+      const PlacedSolid& placed =
+          solids
+              .emplace_back(std::in_place, solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), spacing,
+                            od.initialPosition, st.orientation)
+              .value();
+      // The fluid particles (the slots before the bodies') in the fill, per fluid.
+      std::vector<std::size_t> inside(nf, 0);
+      for (std::size_t i = 0; i < set.firstId; ++i)
+        if (placed.depth(Vec3(store.px[i], store.py[i], store.pz[i])) > 0) ++inside[store.material[i]];
       for (std::size_t f = 0; f < nf; ++f)
         if (inside[f] > 0)
           warnings->push_back(fmt::format(
@@ -341,6 +405,7 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     set.bodies.push_back(std::move(info));
     state.bodies.push_back(st);
   }
+  if (warnings != nullptr) warnOverlappingBodies(desc, set, state.bodies, solids, *warnings);
 }
 
 }  // namespace softsub::scene

@@ -339,8 +339,8 @@ constexpr Field<ObjectDesc> kObject[] = {
     field<&ObjectDesc::mass>({.tag = "Mass",
                               .kind = Kind::Real,
                               .unit = "mass",
-                              .range = kPositive,
-                              .meaning = "mass of the whole body"}),
+                              .range = Range{1e-30, 1e30},
+                              .meaning = "mass of the whole body (its inertia's inverse must stay finite)"}),
     field<&ObjectDesc::isDynamic>(
         {.tag = "IsDynamic",
          .kind = Kind::Bool,

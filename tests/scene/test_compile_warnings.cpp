@@ -162,6 +162,50 @@ TEST(CompileWarnings, CountsTheFluidParticlesThatStartInsideAnObject) {
                   .empty());
 }
 
+// Objects that start inside each other: the particles of one that lie more than about
+// half a particle inside another's closed volume, per pair where one of the two moves. A
+// crate inside a hollow box (all its particles), one sunk half into it, and one turned
+// so that an edge goes in are named; boxes resting face to face (a stack) are not,
+// nor are two static objects.
+TEST(CompileWarnings, NamesObjectsThatStartInsideEachOther) {
+  const auto object = [](const std::string& name, double size, const Vec3& at, double turn,
+                         bool dynamic = true) {
+    return fmt::format(
+        "<Object><Name>{}</Name><Shape>box</Shape><Size>{} {} {}</Size><ParticleSize>0.25</ParticleSize>"
+        "<InitialPosition>{} {} {}</InitialPosition><InitialRotation>0 0 {}</InitialRotation>"
+        "<IsDynamic>{}</IsDynamic></Object>\n",
+        name, size, size, size, at.x(), at.y(), at.z(), turn, dynamic ? "true" : "false");
+  };
+  const std::string big = object("big", 4, Vec3(0, 2, 0), 0);
+  {
+    const std::string text = sceneWith(big + object("small", 1, Vec3(0, 2, 0), 0));
+    const Compiled c = compile(readSceneText(text, "t.scene"));
+    ASSERT_EQ(c.warnings.size(), 1u) << fmt::format("{}", fmt::join(c.warnings, "\n"));
+    EXPECT_NE(
+        c.warnings[0].find(fmt::format("Objects 'big' (line 2) and 'small' (line 3) start inside each other "
+                                       "({0} of the {0} particle(s) of 'small' lie inside 'big'):",
+                                       c.model.bodies.bodies[1].count)),
+        std::string::npos)
+        << c.warnings[0];
+  }
+  // Sunk half into the big one's side (x from 1.5 to 2.5, the big box ends at 2), and a
+  // cube turned 45 degrees about z, its lower edge 0.6 into the big one's top.
+  for (const std::string& other :
+       {object("half", 1, Vec3(2, 2, 0), 0), object("edge", 1, Vec3(0, 4 + std::sqrt(0.5) - 0.6, 0), 45)}) {
+    const std::vector<std::string> w = warningsOf(big + other);
+    ASSERT_EQ(w.size(), 1u) << other;
+    EXPECT_NE(w[0].find("Objects 'big' (line 2) and "), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("lie inside 'big'"), std::string::npos) << w[0];
+    EXPECT_EQ(w[0].find("(0 of "), std::string::npos) << w[0];
+  }
+  // Face to face, a stack of three; beside each other; two static ones one in the other.
+  EXPECT_TRUE(warningsOf(big + object("on", 1, Vec3(0, 4.5, 0), 0) + object("top", 1, Vec3(0, 5.5, 0), 0) +
+                         object("beside", 2, Vec3(3, 1, 0), 0))
+                  .empty());
+  EXPECT_TRUE(
+      warningsOf(object("a", 4, Vec3(0, 2, 0), 0, false) + object("b", 1, Vec3(0, 2, 0), 0, false)).empty());
+}
+
 // ParticleSize (default 1, absolute) against the particles' own spacing: a scene in
 // centimetres that leaves it out gets told, one that sets it does not; and a container
 // narrower than a particle (its walls keep centres half a particle in) is named.
