@@ -133,7 +133,7 @@ class RigidSolver {
   struct Island {
     double kinetic = 0;                       ///< kinetic energy before the solve
     double budget = 0;                        ///< what it may have after: kinetic less the overlap fix's lift
-    bool impact = false;                      ///< some contact has an impact target (else nothing to scale)
+    bool impact = false;  ///< some contact has an impact target or a warm start (else nothing to scale)
     double scale = 1;                         ///< of the impact targets, in the last solve
     double lo = 0, hi = 1, gLo = 0, gHi = 0;  ///< the bracket and its energies less the budget
     std::int8_t side = 0;  ///< which end the last solve moved (-1 lo, 1 hi): the Illinois step
