@@ -12,6 +12,7 @@
 
 #include "core/math.h"
 #include "core/particle_store.h"
+#include "forces/interaction_table.h"
 #include "rigid/body.h"
 
 namespace softsub::rigid {
@@ -85,9 +86,12 @@ class RigidSolver {
   /// a body are put back on its surface and lose their approaching velocity (the body
   /// takes the opposite impulse). `memory` holds the contact impulses of the last
   /// substep, which this one starts from, and receives this substep's (State::contacts).
+  /// `table` (may be null) gives the fluid/object pairs' velocity terms, whose drag on
+  /// each body is taken implicitly in the body's free motion.
   void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
             ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
-            std::span<const float> materialRadius, const Walls* walls, const Vec3& gravity, double dt);
+            std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
+            const Vec3& gravity, double dt);
 
   /// The contacts of the last step (tests, diagnostics).
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
@@ -96,6 +100,17 @@ class RigidSolver {
 
  private:
   void gatherForces(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store);
+  /// Per dynamic body, how the fluid's velocity terms (Viscosity-like damping and
+  /// RelativeVelocity of the fluid/object functions) on its particles change its force
+  /// and torque with its velocity and angular velocity: the 6 x 6 sum of Jᵀ D J over the
+  /// fluid/body pairs within their cutoff (drag_; dragged_ marks the bodies that have any).
+  void gatherDrag(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store,
+                  std::span<const SlotPair> pairs, const forces::InteractionTable& table);
+  /// The fluid's share of the implicit drag: each fluid particle takes the opposite of
+  /// the impulse its pairs' drag gave the bodies beyond the explicit one, so momentum is kept.
+  void dragFluid(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& store,
+                 std::span<const SlotPair> pairs, const forces::InteractionTable& table,
+                 std::span<const float> materialInverseMass, double dt);
   void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
                        const Walls* walls, double dt);
   /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,
@@ -124,6 +139,9 @@ class RigidSolver {
   std::vector<Contact> contacts_;
   // Per body, during a step.
   std::vector<Vec3> force_, torque_;
+  std::vector<Eigen::Matrix<double, 6, 6>> drag_;
+  std::vector<Eigen::Matrix<double, 6, 1>> dragStep_;  ///< per dragged body: its free motion's (dV, dw)
+  std::vector<char> dragged_;
   std::vector<Vec3> pos_, vel_, omega_, pseudoVel_, pseudoOmega_;
   std::vector<Mat3> rot_, invInertia_;
   std::vector<double> invMass_;

@@ -276,8 +276,8 @@ void Simulation::listRigidPairs() {
 void Simulation::stepBodies(double dt) {
   if (model_.bodies.empty()) return;
   rigid_.step(model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_,
-              materialInverseMass_, materialRadius_, model_.container ? &*model_.container : nullptr,
-              model_.gravity, dt);
+              materialInverseMass_, materialRadius_, &model_.table,
+              model_.container ? &*model_.container : nullptr, model_.gravity, dt);
 }
 
 namespace {
