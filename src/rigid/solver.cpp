@@ -23,6 +23,38 @@ double inverseMassAlong(double invMa, const Mat3& invIa, const Vec3& ra, double 
   return k;
 }
 
+// Calls fn(f, k, b) for each listed pair of a fluid particle (slot f) and a particle of
+// body b (slot k).
+template <class Fn>
+void forFluidBodyPairs(const ParticleStore& s, std::uint32_t firstEntity, std::span<const SlotPair> pairs,
+                       Fn&& fn) {
+  for (const SlotPair& p : pairs) {
+    std::uint32_t f = p[0], k = p[1];
+    const bool fIsBody = s.owner[f] >= firstEntity, kIsBody = s.owner[k] >= firstEntity;
+    if (fIsBody == kIsBody) continue;  // body/body: contacts
+    if (fIsBody) std::swap(f, k);
+    fn(f, k, s.owner[k] - firstEntity);
+  }
+}
+
+// A fluid/body pair that drags: its function's velocity terms and the offset d from the
+// body particle to the fluid particle, within the cutoff.
+struct DragPair {
+  double c = 0, k = 0;  ///< damping, RelativeVelocity
+  Vec3 d{0, 0, 0};
+  double r2 = 0;
+};
+bool dragPair(const forces::InteractionTable& table, const ParticleStore& s, std::uint32_t f, std::uint32_t k,
+              DragPair& out) {
+  const forces::PairEntry& e = table.entry(s.material[f], s.material[k]);
+  if (e.damping == 0 && e.relativeVelocity == 0) return false;
+  out.d = Vec3(s.px[f] - s.px[k], s.py[f] - s.py[k], s.pz[f] - s.pz[k]);
+  out.r2 = out.d.squaredNorm();
+  out.c = e.damping;
+  out.k = e.relativeVelocity;
+  return out.r2 < e.cutoff2;
+}
+
 }  // namespace
 
 void RigidSolver::findBodySlots(const BodySet& set, const ParticleStore& s) {
@@ -86,19 +118,9 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
   drag_.resize(nb);
   dragged_.assign(nb, 0);
   if (!table.hasVelocityTerms()) return;
-  const std::uint32_t first = set.firstEntity;
-  for (const SlotPair& p : pairs) {
-    std::uint32_t f = p[0], k = p[1];
-    const bool fIsBody = s.owner[f] >= first, kIsBody = s.owner[k] >= first;
-    if (fIsBody == kIsBody) continue;
-    if (fIsBody) std::swap(f, k);
-    const std::uint32_t b = s.owner[k] - first;
-    if (!set.bodies[b].dynamic) continue;
-    const forces::PairEntry& e = table.entry(s.material[f], s.material[k]);
-    if (e.damping == 0 && e.relativeVelocity == 0) continue;
-    const Vec3 d(s.px[f] - s.px[k], s.py[f] - s.py[k], s.pz[f] - s.pz[k]);
-    const double r2 = d.squaredNorm();
-    if (!(r2 < e.cutoff2)) continue;
+  forFluidBodyPairs(s, set.firstEntity, pairs, [&](std::uint32_t f, std::uint32_t k, std::uint32_t b) {
+    DragPair q;
+    if (!set.bodies[b].dynamic || !dragPair(table, s, f, k, q)) return;
     auto& C = drag_[b];
     if (!dragged_[b]) {
       C.setZero();
@@ -107,7 +129,8 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
     // D = c I + k n nᵀ (n = d / |d|; coincident particles: no normal term). With m = r x n
     // the blocks of Jᵀ D J are D, -D [r]x = -c [r]x + k n mᵀ, its transpose, and
     // -[r]x D [r]x = c (|r|² I - r rᵀ) + k m mᵀ: outer products, no 3 x 3 products.
-    const double c = e.damping, kd = r2 > 0 ? e.relativeVelocity / r2 : 0.0;  // kd on d, not on n
+    const Vec3& d = q.d;
+    const double c = q.c, kd = q.r2 > 0 ? q.k / q.r2 : 0.0;  // kd on d, not on n
     const Vec3 r = Vec3(s.px[k], s.py[k], s.pz[k]) - states[b].position;
     const Vec3 m = r.cross(d);
     Mat3 rx;  // [r]x
@@ -117,7 +140,7 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
     C.topRightCorner<3, 3>() += kd * d * m.transpose() - c * rx;
     C.bottomRightCorner<3, 3>() += kd * m * m.transpose() - c * r * r.transpose();
     C.bottomRightCorner<3, 3>().diagonal().array() += c * r.squaredNorm();
-  }
+  });
   for (std::size_t b = 0; b < nb; ++b)  // the lower left block: the upper right's transpose
     if (dragged_[b]) drag_[b].bottomLeftCorner<3, 3>() = drag_[b].topRightCorner<3, 3>().transpose();
 }
@@ -129,28 +152,18 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
 void RigidSolver::dragFluid(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& s,
                             std::span<const SlotPair> pairs, const forces::InteractionTable& table,
                             std::span<const float> materialInverseMass, double dt) {
-  const std::uint32_t first = set.firstEntity;
-  for (const SlotPair& p : pairs) {
-    std::uint32_t f = p[0], k = p[1];
-    const bool fIsBody = s.owner[f] >= first, kIsBody = s.owner[k] >= first;
-    if (fIsBody == kIsBody) continue;
-    if (fIsBody) std::swap(f, k);
-    const std::uint32_t b = s.owner[k] - first;
-    if (!dragged_[b]) continue;
-    const forces::PairEntry& e = table.entry(s.material[f], s.material[k]);
-    if (e.damping == 0 && e.relativeVelocity == 0) continue;
-    const Vec3 d(s.px[f] - s.px[k], s.py[f] - s.py[k], s.pz[f] - s.pz[k]);
-    const double r2 = d.squaredNorm();
-    if (!(r2 < e.cutoff2)) continue;
+  forFluidBodyPairs(s, set.firstEntity, pairs, [&](std::uint32_t f, std::uint32_t k, std::uint32_t b) {
+    DragPair q;
+    if (!dragged_[b] || !dragPair(table, s, f, k, q)) return;
     const Vec3 arm = Vec3(s.px[k], s.py[k], s.pz[k]) - states[b].position;
     const Vec3 du = dragStep_[b].head<3>() + dragStep_[b].tail<3>().cross(arm);  // J dq
-    Vec3 push = e.damping * du;
-    if (r2 > 0) push += (e.relativeVelocity * d.dot(du) / r2) * d;
+    Vec3 push = q.c * du;
+    if (q.r2 > 0) push += (q.k * q.d.dot(du) / q.r2) * q.d;
     const Vec3 dv = dt * materialInverseMass[s.material[f]] * push;
     s.vx[f] += static_cast<float>(dv.x());
     s.vy[f] += static_cast<float>(dv.y());
     s.vz[f] += static_cast<float>(dv.z());
-  }
+  });
 }
 
 // Two particles of two bodies touch; the line between their centres is the contact
@@ -724,35 +737,33 @@ void RigidSolver::solvePositions(double dt) {
 bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
                                std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
                                std::span<const float> materialRadius) {
-  const std::uint32_t first = set.firstEntity;
   bool pushedBody = false;
-  for (const SlotPair& p : pairs) {
-    std::uint32_t f = p[0], k = p[1];
-    const bool fIsBody = s.owner[f] >= first, kIsBody = s.owner[k] >= first;
-    if (fIsBody == kIsBody) continue;  // body/body: contacts
-    if (fIsBody) std::swap(f, k);
-    const std::uint32_t b = s.owner[k] - first;
+  forFluidBodyPairs(s, set.firstEntity, pairs, [&](std::uint32_t f, std::uint32_t k, std::uint32_t b) {
     const BodyInfo& B = set.bodies[b];
     const Vec3 xf(s.px[f], s.py[f], s.pz[f]), xk(s.px[k], s.py[k], s.pz[k]);
     const Vec3 d = xf - xk;
     const double reach = materialRadius[s.material[f]] + B.particleRadius;
     const double r2 = d.squaredNorm();
-    if (!(r2 < reach * reach) || r2 == 0) continue;
+    if (!(r2 < reach * reach) || r2 == 0) return;
     const double r = std::sqrt(r2);
     const Vec3 n = d / r;  // from the body towards the fluid particle
     const Vec3 put = xf + n * (reach - r);
-    s.px[f] = static_cast<float>(put.x()); s.py[f] = static_cast<float>(put.y()); s.pz[f] = static_cast<float>(put.z());
+    s.px[f] = static_cast<float>(put.x());
+    s.py[f] = static_cast<float>(put.y());
+    s.pz[f] = static_cast<float>(put.z());
     // Inelastic: the fluid particle keeps the body's normal velocity at that point.
     const Vec3 arm = xk - states[b].position;
     const Vec3 vBody = vel_[b] + omega_[b].cross(arm);
     const Vec3 vf(s.vx[f], s.vy[f], s.vz[f]);
     const double vn = (vf - vBody).dot(n);
-    if (!(vn < 0)) continue;
+    if (!(vn < 0)) return;
     const double imf = materialInverseMass[s.material[f]];
     const double kb = B.dynamic ? inverseMassAlong(invMass_[b], invInertia_[b], arm, 0, kZero3, Vec3::Zero(), n) : 0.0;
     const double j = -vn / (imf + kb);
     const Vec3 vNew = vf + n * (j * imf);
-    s.vx[f] = static_cast<float>(vNew.x()); s.vy[f] = static_cast<float>(vNew.y()); s.vz[f] = static_cast<float>(vNew.z());
+    s.vx[f] = static_cast<float>(vNew.x());
+    s.vy[f] = static_cast<float>(vNew.y());
+    s.vz[f] = static_cast<float>(vNew.z());
     if (B.dynamic) {
       const Vec3 impulse = -j * n;
       vel_[b] += impulse * invMass_[b];
@@ -760,7 +771,7 @@ bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& state
       omega_[b] = invInertia_[b] * states[b].angularMomentum;
       pushedBody = true;
     }
-  }
+  });
   return pushedBody;
 }
 
