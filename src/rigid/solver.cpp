@@ -252,10 +252,11 @@ void RigidSolver::faceContact(const BodySet& set, const ParticleStore& s, std::u
   }
   const double along = m.dot(d);
   if (r * r - along * along > kFacePatch * kFacePatch * radius * radius) return;
-  // Farther behind the face than two particles touching: the other particle is not at
-  // this face but beyond the part, at its other side (a plank two particles thick, whose
-  // bottom face pushed a box resting on its top down into it and off sideways).
-  if (along < -(set.bodies[a].particleRadius + set.bodies[b].particleRadius)) return;
+  // Behind the face particle's middle, and already behind it a substep ago: the other
+  // particle did not come through this face but lies beyond the part, at another face (a
+  // plank two particles thick, whose bottom face pushed a box resting on its top down
+  // into it and off the shelf, and spun a box thrown onto it away sideways).
+  if (along < 0 && m.dot(before) <= 0) return;
   c.normal = m;
   c.depth = set.bodies[a].particleRadius + set.bodies[b].particleRadius - along;
 }
