@@ -46,7 +46,7 @@ std::size_t unmatchedEdges(const TriangleMesh& mesh) {
       const std::uint32_t a = t[static_cast<std::size_t>(k)];
       const std::uint32_t b = t[static_cast<std::size_t>((k + 1) % 3)];
       if (a == b) continue;
-      const std::uint64_t key = a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+      const std::uint64_t key = edgeKey(a, b);
       balance[key] += a < b ? 1 : -1;
     }
   }

@@ -488,7 +488,7 @@ std::size_t orientConsistently(TriangleMesh& mesh) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
       if (a == b) continue;
-      Edge& e = edges[a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a];
+      Edge& e = edges[edgeKey(a, b)];
       if (e.count < 2) e.uses[e.count] = Use{t, a < b ? 1 : -1};
       ++e.count;
     }
@@ -552,7 +552,7 @@ MeshEdges countEdges(const TriangleMesh& mesh) {
       const std::uint32_t a = t[k];
       const std::uint32_t b = t[(k + 1) % 3];
       if (a == b) continue;
-      ++uses[a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a];
+      ++uses[edgeKey(a, b)];
     }
   MeshEdges out;
   for (const auto& [edge, n] : uses) {

@@ -9,6 +9,11 @@
 
 namespace softsub::geometry {
 
+/// One key for the edge between vertices a and b, whichever way a triangle runs it.
+[[nodiscard]] inline std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+  return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+}
+
 /// Triangles over shared vertices. Counter-clockwise seen from outside is the
 /// orientation the mass properties assume for a closed mesh (positive volume).
 struct TriangleMesh {

@@ -524,7 +524,7 @@ void RigidSolver::rememberImpulses(std::vector<ContactMemory>& memory, double dt
 void RigidSolver::applyWarmStart() {
   BodyRefs refs{vel_, omega_, invInertia_, invMass_};
   for (Contact& c : contacts_) {
-    const double scale = island_.empty() || island_[c.a] < 0 ? 1.0 : islands_[island_[c.a]].scale;
+    const double scale = islands_[island_[c.a]].scale;  // a is dynamic: it has an island
     c.lambdaN = scale * c.warmN;
     c.lambdaT1 = scale * c.warmT1;
     c.lambdaT2 = scale * c.warmT2;
@@ -619,7 +619,7 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
     islands_[k].kinetic = islands_[k].budget = islandAfter_[k];
   for (const Contact& c : contacts_)
     if (c.impactN != 0 || c.impactT1 != 0 || c.warmN != 0 || c.warmT1 != 0 || c.warmT2 != 0)
-      islands_[island_[c.a]].impact = true;
+      islands_[island_[c.a]].scalable = true;
   // The overlap fix lifts a body out of what it sank into at the impact, over this and
   // the next few substeps: that height is energy too, which the bounce must not also
   // give back (a box bouncing with e = 1 and no friction gained 21% in 34 s, and a ball
@@ -661,7 +661,7 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
       const double g = islandAfter_[k] - is.budget;
       const bool gained = g > 1e-9 * is.kinetic;
       if (is.search == Search::First) {  // at scale 1
-        if (!gained || !is.impact) {     // no impact: no target to scale
+        if (!gained || !is.scalable) {   // no impact target or warm start to scale
           is.search = Search::Settled;
           continue;
         }

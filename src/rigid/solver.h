@@ -125,7 +125,7 @@ class RigidSolver {
   void recallImpulses(const BodySet& set, std::span<const ContactMemory> memory, double dt);
   /// This substep's solved impulses into `memory`.
   void rememberImpulses(std::vector<ContactMemory>& memory, double dt) const;
-  /// Sets every contact's impulses to its starting ones and applies them.
+  /// Sets every contact's impulses to its starting ones, times its island's scale, and applies them.
   void applyWarmStart();
   void solveVelocities();
   void solveVelocitiesWithoutGain(const Vec3& gravity);
@@ -151,7 +151,7 @@ class RigidSolver {
   struct Island {
     double kinetic = 0;                       ///< kinetic energy before the solve
     double budget = 0;                        ///< what it may have after: kinetic less the overlap fix's lift
-    bool impact = false;  ///< some contact has an impact target or a warm start (else nothing to scale)
+    bool scalable = false;  ///< some contact has an impact target or a warm start (else nothing to scale)
     double scale = 1;                         ///< of the impact targets, in the last solve
     double lo = 0, hi = 1, gLo = 0, gHi = 0;  ///< the bracket and its energies less the budget
     std::int8_t side = 0;  ///< which end the last solve moved (-1 lo, 1 hi): the Illinois step
