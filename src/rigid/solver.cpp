@@ -98,72 +98,133 @@ void RigidSolver::gatherForces(const BodySet& set, const std::vector<BodyState>&
   }
 }
 
-// The fluid pulls a body along through the velocity terms of the fluid/object function
-// (damping c on the relative velocity, RelativeVelocity k on its normal part), summed
-// over every pair of a fluid particle and a body particle within reach. Taken
-// explicitly, that drag moves a light body of many fine particles by more than its
-// velocity in one substep: a pallet of mass 2 (1,600 particles of 0.25) under 300
-// resting mud particles gained about 2.6 times its kinetic energy a frame until the
-// run blew up, and four mud particles dropped onto it threw it 20 units up (a
-// review, twenty-eighth session). So the body's free motion solves for its new
-// velocities with the drag at the end of the substep (linearly implicit Euler, the
-// fluid's velocities held): (M + dt C) dq = dt Q, with M the body's mass and world
-// inertia, Q its force and torque (the explicit drag included) and C the sum over the
-// pairs of Jᵀ D J, J = [I, -[r]x] taking (V, w) to the velocity of the body particle at
-// arm r, D = c I + k n nᵀ. Where the drag is slight, dq is the explicit step's to first
-// order in dt C / M.
+// The fluid and the bodies pull each other along through the velocity terms of the
+// fluid/object function (damping c on the relative velocity, RelativeVelocity k on its
+// normal part), summed over every pair of a fluid particle and a body particle within
+// reach. Taken explicitly, that drag damps far faster than one substep can follow
+// wherever one side meets many particles of the other: a light body of fine particles
+// under mud (a pallet of mass 2 of 1,600 particles of 0.25 gained about 2.6 times its
+// kinetic energy a frame until the run blew up), and a fluid particle lying on about 200
+// fine body particles, static or not (RelativeVelocity 5 or 10: the mud was flung off at
+// hundreds of units a second; reviews, twenty-eighth session). So both sides take the
+// drag at the end of the substep (linearly implicit Euler), solved together:
+//   body:  (M + dt C) dq - dt sum_f G_fᵀ dv_f = dt Q
+//   fluid: (m I + dt D_f) dv_f - dt G_f dq = e_f
+// with dq the body's (dV, dw), M its mass and world inertia, Q its force and torque (the
+// explicit drag included), C = sum Jᵀ D J over its pairs, J = [I, -[r]x] taking (V, w) to
+// the velocity of the body particle at arm r, D = c I + k n nᵀ a pair's drag, D_f the sum
+// of D over the fluid particle's pairs (all bodies), G_f = sum D J over its pairs with
+// this body, and e_f = dt (f + m g) the fluid particle's explicit momentum step. Each
+// fluid particle is eliminated (3 x 3), leaving per body
+//   (M + dt C - dt² sum_f G_fᵀ A_f⁻¹ G_f) dq = dt Q + dt sum_f G_fᵀ A_f⁻¹ e_f,  A_f = m I + dt D_f,
+// then dv_f = A_f⁻¹ (e_f + dt sum_b G_fb dq_b). The whole system's matrix is the masses
+// plus dt times a sum of [J, -I]ᵀ D [J, -I], so it and the eliminated one are symmetric
+// positive definite, and the pair impulses cancel: momentum is kept. A fluid particle
+// touching two bodies couples them; each body's solve holds the other still (its share
+// of the particle's A_f is still implicit). Where the drag is slight, every increment is
+// the explicit step's to first order.
 void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& s,
-                             std::span<const SlotPair> pairs, const forces::InteractionTable& table) {
+                             std::span<const SlotPair> pairs, const forces::InteractionTable& table,
+                             std::span<const float> materialInverseMass, const Vec3& gravity, double dt) {
   const std::size_t nb = set.bodies.size();
   drag_.resize(nb);
+  dragRhs_.resize(nb);
   dragged_.assign(nb, 0);
+  fluids_.clear();
+  couplings_.clear();
   if (!table.hasVelocityTerms()) return;
+  if (fluidRow_.size() < s.size()) fluidRow_.resize(s.size(), kNoRow);
   forFluidBodyPairs(s, set.firstEntity, pairs, [&](std::uint32_t f, std::uint32_t k, std::uint32_t b) {
     DragPair q;
-    if (!set.bodies[b].dynamic || !dragPair(table, s, f, k, q)) return;
+    if (!dragPair(table, s, f, k, q)) return;
+    // D = c I + k n nᵀ (n = d / |d|; coincident particles: no normal term).
+    const Vec3& d = q.d;
+    const double c = q.c, kd = q.r2 > 0 ? q.k / q.r2 : 0.0;  // kd on d, not on n
+    Mat3 D = kd * d * d.transpose();
+    D.diagonal().array() += c;
+    std::uint32_t& row = fluidRow_[f];
+    if (row == kNoRow) {
+      row = static_cast<std::uint32_t>(fluids_.size());
+      fluids_.push_back({f, -1, Mat3::Zero(), Mat3::Zero(), Vec3::Zero()});
+    }
+    FluidDrag& fluid = fluids_[row];
+    fluid.sum += D;
+    if (!set.bodies[b].dynamic) return;
     auto& C = drag_[b];
     if (!dragged_[b]) {
       C.setZero();
+      dragRhs_[b].setZero();
       dragged_[b] = 1;
     }
-    // D = c I + k n nᵀ (n = d / |d|; coincident particles: no normal term). With m = r x n
-    // the blocks of Jᵀ D J are D, -D [r]x = -c [r]x + k n mᵀ, its transpose, and
-    // -[r]x D [r]x = c (|r|² I - r rᵀ) + k m mᵀ: outer products, no 3 x 3 products.
-    const Vec3& d = q.d;
-    const double c = q.c, kd = q.r2 > 0 ? q.k / q.r2 : 0.0;  // kd on d, not on n
+    // With m = r x d the blocks of Jᵀ D J are D, -D [r]x = -c [r]x + kd d mᵀ, its
+    // transpose, and -[r]x D [r]x = c (|r|² I - r rᵀ) + kd m mᵀ: outer products.
     const Vec3 r = Vec3(s.px[k], s.py[k], s.pz[k]) - states[b].position;
     const Vec3 m = r.cross(d);
     Mat3 rx;  // [r]x
     rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    C.topLeftCorner<3, 3>() += kd * d * d.transpose();
-    C.topLeftCorner<3, 3>().diagonal().array() += c;
-    C.topRightCorner<3, 3>() += kd * d * m.transpose() - c * rx;
+    const Mat3 Drx = kd * d * m.transpose() - c * rx;  // -D [r]x
+    C.topLeftCorner<3, 3>() += D;
+    C.topRightCorner<3, 3>() += Drx;
     C.bottomRightCorner<3, 3>() += kd * m * m.transpose() - c * r * r.transpose();
     C.bottomRightCorner<3, 3>().diagonal().array() += c * r.squaredNorm();
+    // G_fb += D J = [D, -D [r]x]: this pair's share of the fluid particle's coupling.
+    std::int32_t at = fluid.first;
+    while (at >= 0 && couplings_[static_cast<std::size_t>(at)].body != b)
+      at = couplings_[static_cast<std::size_t>(at)].next;
+    if (at < 0) {
+      at = static_cast<std::int32_t>(couplings_.size());
+      couplings_.push_back({b, fluid.first, Eigen::Matrix<double, 3, 6>::Zero()});
+      fluid.first = at;
+    }
+    auto& g = couplings_[static_cast<std::size_t>(at)].g;
+    g.leftCols<3>() += D;
+    g.rightCols<3>() += Drx;
   });
   for (std::size_t b = 0; b < nb; ++b)  // the lower left block: the upper right's transpose
     if (dragged_[b]) drag_[b].bottomLeftCorner<3, 3>() = drag_[b].topRightCorner<3, 3>().transpose();
+  // Each fluid particle eliminated: A_f⁻¹ and its explicit step, then its couplings'
+  // terms in their bodies' systems (drag_ becomes C - dt sum Gᵀ A⁻¹ G, dragRhs_ sum Gᵀ A⁻¹ e).
+  for (FluidDrag& fluid : fluids_) {
+    const std::uint32_t f = fluid.slot;
+    const double mass = 1.0 / materialInverseMass[s.material[f]];
+    fluid.step = dt * (Vec3(s.f[f].x, s.f[f].y, s.f[f].z) + mass * gravity);
+    Mat3 a = dt * fluid.sum;
+    a.diagonal().array() += mass;
+    fluid.inverse = a.inverse();  // symmetric positive definite, at least the particle's mass on the diagonal
+    for (std::int32_t at = fluid.first; at >= 0; at = couplings_[static_cast<std::size_t>(at)].next) {
+      const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
+      const Eigen::Matrix<double, 6, 3> gtInv = cp.g.transpose() * fluid.inverse;
+      drag_[cp.body] -= dt * (gtInv * cp.g);
+      dragRhs_[cp.body] += gtInv * fluid.step;
+    }
+  }
 }
 
-// The body's free motion took its drag at its new velocities; the fluid particles saw
-// it at the old ones. The difference, -dt D J dq on the body particle of each pair, goes
-// to the pair's fluid particle with the opposite sign, so linear momentum is kept as the
-// explicit kernel keeps it (a fluid blob flying into a box lost 1% of it without).
-void RigidSolver::dragFluid(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& s,
-                            std::span<const SlotPair> pairs, const forces::InteractionTable& table,
-                            std::span<const float> materialInverseMass, double dt) {
-  forFluidBodyPairs(s, set.firstEntity, pairs, [&](std::uint32_t f, std::uint32_t k, std::uint32_t b) {
-    DragPair q;
-    if (!dragged_[b] || !dragPair(table, s, f, k, q)) return;
-    const Vec3 arm = Vec3(s.px[k], s.py[k], s.pz[k]) - states[b].position;
-    const Vec3 du = dragStep_[b].head<3>() + dragStep_[b].tail<3>().cross(arm);  // J dq
-    Vec3 push = q.c * du;
-    if (q.r2 > 0) push += (q.k * q.d.dot(du) / q.r2) * q.d;
-    const Vec3 dv = dt * materialInverseMass[s.material[f]] * push;
-    s.vx[f] += static_cast<float>(dv.x());
-    s.vy[f] += static_cast<float>(dv.y());
-    s.vz[f] += static_cast<float>(dv.z());
-  });
+// The fluid particles' share of the implicit drag (gatherDrag): each had its explicit
+// step e_f / m added to its velocity (and, when the integrator drifts after kicking, to
+// its position over `drift`); it gets dv_f = A_f⁻¹ (e_f + dt sum_b G_fb dq_b) instead.
+void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInverseMass, double dt,
+                            double drift) {
+  for (const FluidDrag& fluid : fluids_) {
+    const std::uint32_t f = fluid.slot;
+    Vec3 w = fluid.step;
+    for (std::int32_t at = fluid.first; at >= 0; at = couplings_[static_cast<std::size_t>(at)].next) {
+      const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
+      w += dt * (cp.g * dragStep_[cp.body]);
+    }
+    const Vec3 change =
+        fluid.inverse * w - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
+    s.vx[f] += static_cast<float>(change.x());
+    s.vy[f] += static_cast<float>(change.y());
+    s.vz[f] += static_cast<float>(change.z());
+    if (drift > 0) {
+      s.px[f] += static_cast<float>(drift * change.x());
+      s.py[f] += static_cast<float>(drift * change.y());
+      s.pz[f] += static_cast<float>(drift * change.z());
+    }
+    fluidRow_[f] = kNoRow;
+  }
+  fluids_.clear();
 }
 
 // Two particles of two bodies touch; the line between their centres is the contact
@@ -780,7 +841,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
                        ParticleStore& s, std::span<const SlotPair> pairs,
                        std::span<const float> materialInverseMass, std::span<const float> materialRadius,
                        const forces::InteractionTable* table, const Walls* walls, const Vec3& gravity,
-                       double dt) {
+                       double dt, double fluidDrift) {
   if (set.empty()) return;
   const std::size_t nb = set.bodies.size();
   // Body particles may have been moved by the fluid integrator: put them back on their
@@ -788,10 +849,11 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
   writeParticles(set, states, s);
   gatherForces(set, states, s);
   if (table != nullptr) {
-    gatherDrag(set, states, s, pairs, *table);
+    gatherDrag(set, states, s, pairs, *table, materialInverseMass, gravity, dt);
     dragStep_.resize(nb);
   } else {
     dragged_.assign(nb, 0);
+    fluids_.clear();
   }
   pos_.resize(nb); vel_.resize(nb); omega_.resize(nb); invInertia_.resize(nb); invMass_.resize(nb);
   startVel_.assign(nb, Vec3::Zero());
@@ -820,6 +882,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
       a.bottomRightCorner<3, 3>() += inertia;
       Eigen::Matrix<double, 6, 1> q;
       q << (force_[b] + info.mass * gravity) * dt, torque_[b] * dt;
+      q += dt * dragRhs_[b];
       const Eigen::Matrix<double, 6, 1> dq = a.ldlt().solve(q);
       dragStep_[b] = dq;
       st.velocity += dq.head<3>();
@@ -832,8 +895,6 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     vel_[b] = st.velocity;
     omega_[b] = invInertia_[b] * st.angularMomentum;
   }
-  if (table != nullptr && std::find(dragged_.begin(), dragged_.end(), 1) != dragged_.end())
-    dragFluid(set, states, s, pairs, *table, materialInverseMass, dt);
   collectContacts(set, s, pairs, walls, dt);
   reduceContacts();
   prepareContacts(dt, gravity);
@@ -841,6 +902,16 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
   solveVelocitiesWithoutGain(gravity);
   rememberImpulses(memory, dt);
   solvePositions(dt);
+  if (!fluids_.empty()) {
+    // The fluid follows what the bodies did in the whole substep, contacts included: a
+    // pallet resting on the floor under mud is stopped by the floor, and so is the mud
+    // dragged along with it. (Following the free motion alone, the mud was given the
+    // fall the floor took back from the pallet, every substep: it pressed into the
+    // pallet and the pallet shook.)
+    for (std::size_t b = 0; b < nb; ++b)
+      if (dragged_[b]) dragStep_[b] << vel_[b] - startVel_[b], omega_[b] - startOmega_[b];
+    dragFluid(s, materialInverseMass, dt, fluidDrift);
+  }
   for (std::size_t b = 0; b < nb; ++b) {
     const BodyInfo& info = set.bodies[b];
     if (!info.dynamic) continue;

@@ -86,12 +86,16 @@ class RigidSolver {
   /// a body are put back on its surface and lose their approaching velocity (the body
   /// takes the opposite impulse). `memory` holds the contact impulses of the last
   /// substep, which this one starts from, and receives this substep's (State::contacts).
-  /// `table` (may be null) gives the fluid/object pairs' velocity terms, whose drag on
-  /// each body is taken implicitly in the body's free motion.
+  /// `table` (may be null) gives the fluid/object pairs' velocity terms, whose drag is
+  /// taken implicitly on both sides: the bodies' free motion and the velocities of the
+  /// fluid particles they touch. Those particles were kicked by dt (f / m + g) before
+  /// this call, with `store.f` as it still is; their velocities are corrected, and their
+  /// positions by `fluidDrift` times the correction (dt where the integrator drifted them
+  /// after the kick, 0 where before).
   void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
             ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
             std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
-            const Vec3& gravity, double dt);
+            const Vec3& gravity, double dt, double fluidDrift);
 
   /// The contacts of the last step (tests, diagnostics).
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
@@ -100,17 +104,16 @@ class RigidSolver {
 
  private:
   void gatherForces(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store);
-  /// Per dynamic body, how the fluid's velocity terms (Viscosity-like damping and
-  /// RelativeVelocity of the fluid/object functions) on its particles change its force
-  /// and torque with its velocity and angular velocity: the 6 x 6 sum of Jᵀ D J over the
-  /// fluid/body pairs within their cutoff (drag_; dragged_ marks the bodies that have any).
+  /// The fluid/body drag's implicit system (solver.cpp): per dynamic body, the 6 x 6
+  /// matrix C - dt sum G_fᵀ A_f⁻¹ G_f (drag_; dragged_ marks the bodies that have any)
+  /// and the right side's sum G_fᵀ A_f⁻¹ e_f (dragRhs_); per fluid particle within reach
+  /// of a body, A_f⁻¹, its explicit step e_f and its couplings (fluids_, couplings_).
   void gatherDrag(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store,
-                  std::span<const SlotPair> pairs, const forces::InteractionTable& table);
-  /// The fluid's share of the implicit drag: each fluid particle takes the opposite of
-  /// the impulse its pairs' drag gave the bodies beyond the explicit one, so momentum is kept.
-  void dragFluid(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& store,
-                 std::span<const SlotPair> pairs, const forces::InteractionTable& table,
-                 std::span<const float> materialInverseMass, double dt);
+                  std::span<const SlotPair> pairs, const forces::InteractionTable& table,
+                  std::span<const float> materialInverseMass, const Vec3& gravity, double dt);
+  /// The fluid particles' side: each one's velocity (and position, by `drift` times the
+  /// change) from its explicit step to the implicit one, with the bodies' solved dq.
+  void dragFluid(ParticleStore& store, std::span<const float> materialInverseMass, double dt, double drift);
   void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
                        const Walls* walls, double dt);
   /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,
@@ -141,7 +144,25 @@ class RigidSolver {
   std::vector<Vec3> force_, torque_;
   std::vector<Eigen::Matrix<double, 6, 6>> drag_;
   std::vector<Eigen::Matrix<double, 6, 1>> dragStep_;  ///< per dragged body: its free motion's (dV, dw)
+  std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;
   std::vector<char> dragged_;
+  // Per fluid particle within reach of a body's drag, during a step.
+  struct FluidDrag {
+    std::uint32_t slot = 0;
+    std::int32_t first = -1;  ///< its first coupling in couplings_ (-1: static bodies only)
+    Mat3 sum;                 ///< sum of D over its pairs, all bodies
+    Mat3 inverse;             ///< A⁻¹ = (m I + dt sum)⁻¹
+    Vec3 step;                ///< e = dt (f + m g), its explicit momentum step
+  };
+  struct Coupling {  ///< a fluid particle and a dynamic body it drags
+    std::uint32_t body = 0;
+    std::int32_t next = -1;         ///< the particle's next coupling
+    Eigen::Matrix<double, 3, 6> g;  ///< sum of D J over their pairs
+  };
+  static constexpr std::uint32_t kNoRow = UINT32_MAX;
+  std::vector<std::uint32_t> fluidRow_;  ///< per slot: its row in fluids_, kNoRow between steps
+  std::vector<FluidDrag> fluids_;
+  std::vector<Coupling> couplings_;
   std::vector<Vec3> pos_, vel_, omega_, pseudoVel_, pseudoOmega_;
   std::vector<Mat3> rot_, invInertia_;
   std::vector<double> invMass_;

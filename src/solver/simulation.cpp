@@ -275,9 +275,10 @@ void Simulation::listRigidPairs() {
 
 void Simulation::stepBodies(double dt) {
   if (model_.bodies.empty()) return;
-  rigid_.step(model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_,
-              materialInverseMass_, materialRadius_, &model_.table,
-              model_.container ? &*model_.container : nullptr, model_.gravity, dt);
+  rigid_.step(
+      model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_, materialInverseMass_,
+      materialRadius_, &model_.table, model_.container ? &*model_.container : nullptr, model_.gravity, dt,
+      model_.integrator == Integrator::ExplicitEuler ? 0.0 : dt);  // explicit Euler drifts before kicking
 }
 
 namespace {

@@ -450,7 +450,16 @@ StabilityReport assessStability(const Model& model, const State* state) {
   std::unordered_map<std::uint32_t, FunctionNumbers> byFunction;
   std::map<std::tuple<std::uint32_t, double, double, double, double>, PairStability> byPair;
   auto add = [&](std::size_t a, std::size_t b, double massB, std::string second) {
-    const forces::Interaction& interaction = model.table.interaction(a, b);
+    // A fluid/object pair's velocity terms are taken implicitly on both sides
+    // (rigid::RigidSolver::gatherDrag): they damp, and limit no time step. Only its
+    // function counts.
+    const forces::Interaction& entry = model.table.interaction(a, b);
+    std::optional<forces::Interaction> withoutDrag;
+    if (b >= nf && (entry.damping != 0 || entry.relativeVelocity != 0)) {
+      withoutDrag = entry;
+      withoutDrag->damping = withoutDrag->relativeVelocity = 0;
+    }
+    const forces::Interaction& interaction = withoutDrag ? *withoutDrag : entry;
     const std::uint32_t function = model.table.entry(a, b).offset;
     const double massA = model.fluids[a].particleMass;
     const double lattice = particles ? particles->rate(a, b, std::abs(interaction.damping),

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "scene/compile.h"
+#include "scene/reader.h"
 #include "solver/simulation.h"
 #include "solver/stability.h"
 
@@ -371,6 +372,36 @@ TEST(Stability, AdaptiveSubstepsFollowTheFastestParticle) {
 
 // A fluid of one particle has no pair of its own: the jelly that cannot be stable at 1
 // substep is no warning when alone (a lone particle was reported unstable at any count).
+// A fluid/object pair's velocity terms are taken implicitly on both sides (the body's
+// free motion and the fluid particles it touches: rigid::RigidSolver), so they limit no
+// time step: the pair is judged by its function alone, whatever its Damping and
+// RelativeVelocity. (The fluid's own pair keeps its Viscosity.)
+TEST(Stability, AFluidObjectPairIsJudgedByItsFunctionAlone) {
+  auto report = [](const std::string& terms) {
+    const scene::SceneDesc d = scene::readSceneText(
+        R"(<Scene version="1"><Simulation><Substeps>8</Substeps></Simulation>
+           <Fluid><Name>mud</Name><Viscosity>6</Viscosity>
+           <Fill><Shape>box</Shape><Min>0 1.0 -2.4</Min><Max>1.6 2.2 -0.8</Max><Spacing>0.8</Spacing></Fill></Fluid>
+           <Object><Name>pallet</Name><Shape>box</Shape><Size>10 0.5 5</Size><ParticleSize>0.25</ParticleSize>
+           <InitialPosition>0 0.25 0</InitialPosition><Mass>2</Mass></Object>
+           <Interactions><FluidObject><Linear><AtZero>5</AtZero><Cutoff>1.5</Cutoff></Linear>)" +
+            terms + "</FluidObject></Interactions></Scene>",
+        "mud.scene");
+    const scene::Compiled c = scene::compile(d);
+    return assessStability(c.model, &c.state);
+  };
+  const StabilityReport none = report("<Damping>0</Damping><RelativeVelocity>0</RelativeVelocity>");
+  const StabilityReport strong = report("<Damping>40</Damping><RelativeVelocity>500</RelativeVelocity>");
+  ASSERT_EQ(none.pairs.size(), 2u);
+  ASSERT_EQ(strong.pairs.size(), 2u);
+  EXPECT_EQ(strong.pairs[1].second, "pallet");
+  EXPECT_EQ(strong.pairs[1].dampingNumber, 0);
+  EXPECT_EQ(strong.pairs[1].latticeDampingNumber, 0);
+  EXPECT_EQ(strong.pairs[1].minimumSubsteps, none.pairs[1].minimumSubsteps);
+  EXPECT_EQ(strong.pairs[1].verdict, none.pairs[1].verdict);
+  EXPECT_GT(strong.pairs[0].dampingNumber, 0) << "the mud's own Viscosity still counts";
+}
+
 TEST(Stability, AFluidOfOneParticleHasNoPairOfItsOwn) {
   scene::SceneDesc d = jellyBlob(1);
   ASSERT_EQ(assessStability(scene::compile(d).model).verdict, StabilityVerdict::Unstable);
