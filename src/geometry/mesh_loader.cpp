@@ -17,6 +17,7 @@
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/IOStream.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -383,10 +384,9 @@ void checkFaces(const aiScene& scene, const std::string& name) {
   }
 }
 
-// An OBJ or MTL file read as if it had no UTF-8 byte-order mark (Windows editors save
-// one): assimp's OBJ reader took the mark for part of the first line, lost the first
-// vertex, and refused the file as "vertex index out of range". Offsets count from after
-// the mark; the stream it wraps is its own (assimp's Close deletes this one).
+// An MTL file read as if it had no UTF-8 byte-order mark (Windows editors save one).
+// Offsets count from after the mark; the stream it wraps is its own (assimp's Close
+// deletes this one).
 class WithoutByteOrderMark : public Assimp::IOStream {
  public:
   explicit WithoutByteOrderMark(Assimp::IOStream* inner) : inner_(inner) {}
@@ -409,7 +409,69 @@ class WithoutByteOrderMark : public Assimp::IOStream {
   Assimp::IOStream* inner_;
 };
 
-// Assimp's file system, with OBJ and MTL files opened past a byte-order mark.
+// A stream over text it owns (the text is a base, so it is there before the stream's
+// pointer to it).
+struct TextHolder {
+  std::string text;
+};
+class OwnedText : private TextHolder, public Assimp::MemoryIOStream {
+ public:
+  explicit OwnedText(std::string t)
+      : TextHolder{std::move(t)},
+        MemoryIOStream(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), false) {}
+};
+
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
+
+}  // namespace
+
+std::string objForAssimp(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  std::string out;
+  out.reserve(text.size());
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    const bool newline = end != std::string_view::npos;
+    std::size_t at = 0;
+    while (at < line.size() && isBlank(line[at])) ++at;
+    std::size_t keywordEnd = at;
+    while (keywordEnd < line.size() && !isBlank(line[keywordEnd]) && line[keywordEnd] != '\r') ++keywordEnd;
+    const std::string_view keyword = line.substr(at, keywordEnd - at);
+    if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f" || keyword == "l" ||
+        keyword == "p") {
+      const bool carriageReturn = !line.empty() && line.back() == '\r';
+      if (const std::size_t hash = line.find('#'); hash != std::string_view::npos)
+        line = line.substr(0, hash);
+      else if (carriageReturn) line.remove_suffix(1);
+      // The fields after the keyword: exactly four on a v line drops the fourth.
+      if (keyword == "v") {
+        std::array<std::size_t, 5> begins{};
+        std::size_t fields = 0, q = keywordEnd;
+        while (q < line.size()) {
+          while (q < line.size() && isBlank(line[q])) ++q;
+          if (q >= line.size()) break;
+          if (fields < begins.size()) begins[fields] = q;
+          ++fields;
+          while (q < line.size() && !isBlank(line[q])) ++q;
+        }
+        if (fields == 4) line = line.substr(0, begins[3]);
+      }
+      out += line;
+      if (carriageReturn) out += '\r';
+    } else {
+      out += line;
+    }
+    if (newline) out += '\n';
+  }
+  return out;
+}
+
+namespace {
+
+// Assimp's file system: OBJ files read through objForAssimp, MTL files past a
+// byte-order mark.
 class MeshIOSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
@@ -418,6 +480,15 @@ class MeshIOSystem : public Assimp::DefaultIOSystem {
     if (stream == nullptr || (ext != ".obj" && ext != ".mtl") ||
         std::string_view(mode).find('r') == std::string_view::npos)
       return stream;
+    if (ext == ".obj") {
+      std::string raw(stream->FileSize(), '\0');
+      const std::size_t got = raw.empty() ? 0 : stream->Read(raw.data(), 1, raw.size());
+      raw.resize(got);
+      delete stream;
+      std::string clean = objForAssimp(raw);
+      raw = std::string();  // a file of up to 1 GiB: not three copies at once
+      return new OwnedText(std::move(clean));
+    }
     unsigned char head[3] = {};
     if (stream->Read(head, 1, 3) == 3 && head[0] == 0xEF && head[1] == 0xBB && head[2] == 0xBF) {
       auto* past = new WithoutByteOrderMark(stream);

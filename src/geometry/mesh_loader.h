@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geometry/triangle_mesh.h"
@@ -37,6 +38,15 @@ std::size_t orientConsistently(TriangleMesh& mesh);
 
 /// The warning for a volume fill of a mesh with boundary edges, "" when it has none.
 [[nodiscard]] std::string openMeshWarning(const MeshEdges& edges);
+
+/// OBJ text as loadMesh hands it to assimp: without a UTF-8 byte-order mark (assimp
+/// took it for part of the first line and lost the first vertex), without a comment
+/// after the data of a `v`, `vt`, `vn`, `f`, `l` or `p` line (assimp refused
+/// `f 1 2 3 # a note`), and without the fourth number of a `v x y z w` line (w weighs
+/// the control points of rational curves; Blender and Maya ignore it on polygon
+/// vertices, assimp divided the position by it). Every other line, and every line
+/// ending, is kept as it is.
+[[nodiscard]] std::string objForAssimp(std::string_view text);
 
 /// Files larger than this are refused before anything is read.
 inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
