@@ -8,6 +8,10 @@ namespace softsub::rigid {
 
 namespace {
 
+// The mass ratio between two touching bodies from which their island takes shock
+// propagation (RigidSolver::propagateShock).
+constexpr double kShockRatio = 10;
+
 // cos 3 degrees: two flat faces whose normals are this close to opposite meet face to face.
 constexpr double kFacesMeet = 0.9986;
 
@@ -625,6 +629,149 @@ void RigidSolver::solveVelocities() {
       c.lambdaN = next;
     }
   }
+  propagateShock(vel_, omega_, true, [](const Contact&) { return 0.0; });
+}
+
+// Shock propagation (after Guendelman, Bridson and Fedkiw 2003). Sweeps converge slowly
+// down a chain of contacts with a large mass ratio: a crate of mass 1,000 on a plank of
+// mass 1 pressed the plank into the floor faster than twenty sweeps could carry the
+// floor's push up through it, and sank through in two seconds. So each body resting on
+// static ground (a wall, a static body) has level 0, a body resting on a level-L body
+// level L + 1 (breadth first), and after the sweeps the resting contacts are visited
+// level by level from the ground up, each contact's lower body held still (infinite
+// mass): the plank is stopped by the floor, then the crate by the plank. Only resting
+// contacts (no impact target) between two levels take part, and only as a push along
+// the normal that stops the upper body closing in (`target` its closing speed allowed:
+// 0 for velocities, the overlap fix's for pseudo-velocities); where the sweeps
+// converged it does nothing. Bodies with no path to the ground (a stack falling
+// freely) have no level and are left to the sweeps, and so are islands without a mass
+// ratio of kShockRatio between two touching bodies.
+template <class Target>
+void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omega, bool friction,
+                                 Target target) {
+  const std::size_t nb = vel.size();
+  level_.assign(nb, -1);
+  std::vector<std::uint32_t>& queue = levelQueue_;
+  queue.clear();
+  for (const Contact& c : contacts_)
+    if ((c.b < 0 || invMass_[c.b] == 0) && level_[c.a] < 0) {
+      level_[c.a] = 0;
+      queue.push_back(static_cast<std::uint32_t>(c.a));
+    }
+  if (queue.empty()) return;
+  // Only islands with a mass ratio of kShockRatio or more between two touching bodies:
+  // elsewhere the sweeps converge (a stack of equal boxes), and the pass, visiting a
+  // face's four contacts one by one, would only leave them a little turn to creep by.
+  shocked_.assign(islands_.size(), 0);
+  bool any = false;
+  for (const Contact& c : contacts_)
+    if (c.b >= 0 && invMass_[c.b] > 0 &&
+        std::max(invMass_[c.a], invMass_[c.b]) >= kShockRatio * std::min(invMass_[c.a], invMass_[c.b])) {
+      shocked_[static_cast<std::size_t>(island_[c.a])] = 1;
+      any = true;
+    }
+  if (!any) return;
+  // Breadth first through the contacts between dynamic bodies (as (body, other) pairs
+  // sorted by body: linear in the contacts whatever the height of the pile).
+  std::vector<std::array<std::uint32_t, 2>>& links = levelLinks_;
+  links.clear();
+  for (const Contact& c : contacts_)
+    if (c.b >= 0 && invMass_[c.b] > 0) {
+      links.push_back({static_cast<std::uint32_t>(c.a), static_cast<std::uint32_t>(c.b)});
+      links.push_back({static_cast<std::uint32_t>(c.b), static_cast<std::uint32_t>(c.a)});
+    }
+  std::sort(links.begin(), links.end());
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::uint32_t body = queue[head];
+    auto it = std::lower_bound(links.begin(), links.end(), std::array<std::uint32_t, 2>{body, 0});
+    for (; it != links.end() && (*it)[0] == body; ++it)
+      if (level_[(*it)[1]] < 0) {
+        level_[(*it)[1]] = level_[body] + 1;
+        queue.push_back((*it)[1]);
+      }
+  }
+  // Each taking part contact under its upper body's level (counting sort, stable: the
+  // contacts of a level are visited in the sweeps' order). upper: 0 body a, 1 body b.
+  const std::int32_t levels = level_[queue.back()] + 1;
+  std::vector<std::uint32_t>& start = levelStart_;
+  std::vector<std::uint32_t>& order = levelOrder_;
+  start.assign(static_cast<std::size_t>(levels) + 1, 0);
+  const auto upperOf = [&](const Contact& c) -> std::int32_t {  // -1: not taking part
+    if (c.impactN != 0 || !shocked_[static_cast<std::size_t>(island_[c.a])]) return -1;
+    const bool ground = c.b < 0 || invMass_[c.b] == 0;
+    const std::int32_t la = level_[c.a], lb = ground ? -1 : level_[c.b];
+    if (la >= 0 && (ground || lb == la - 1)) return 0;  // a over the ground or a lower b
+    if (!ground && lb >= 0 && la == lb - 1) return 1;   // b over a
+    return -1;
+  };
+  const auto levelOf = [&](const Contact& c, std::int32_t upper) {
+    return upper == 0 ? level_[c.a] : level_[c.b];
+  };
+  for (const Contact& c : contacts_)
+    if (const std::int32_t u = upperOf(c); u >= 0) ++start[static_cast<std::size_t>(levelOf(c, u)) + 1];
+  for (std::size_t l = 1; l < start.size(); ++l) start[l] += start[l - 1];
+  order.resize(start.back());
+  {
+    std::vector<std::uint32_t>& fill = levelFill_;
+    fill.assign(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < contacts_.size(); ++k)
+      if (const std::int32_t u = upperOf(contacts_[k]); u >= 0)
+        order[fill[static_cast<std::size_t>(levelOf(contacts_[k], u))]++] = static_cast<std::uint32_t>(k);
+  }
+  for (Contact& c : contacts_) c.shockN = c.shockT1 = c.shockT2 = 0;
+  constexpr int kSweeps = 8;
+  for (std::int32_t level = 0; level < levels; ++level) {
+    for (int sweep = 0; sweep < kSweeps; ++sweep) {
+      for (std::uint32_t q = start[static_cast<std::size_t>(level)];
+           q < start[static_cast<std::size_t>(level) + 1]; ++q) {
+        Contact& c = contacts_[order[q]];
+        const std::int32_t upper = upperOf(c);
+        const std::int32_t body = upper == 0 ? c.a : c.b;
+        const Vec3& arm = upper == 0 ? c.ra : c.rb;
+        // The contact's impulse P (as on a) changes the closing velocity by K P with K
+        // the upper body's own inverse mass along it, the lower body held still.
+        const auto relative = [&] {
+          Vec3 v = vel[c.a] + omega[c.a].cross(c.ra);
+          if (c.b >= 0) v -= vel[c.b] + omega[c.b].cross(c.rb);
+          return v;
+        };
+        const auto along = [&](const Vec3& d) {
+          const Vec3 turn = arm.cross(d);
+          return invMass_[body] + turn.dot(invInertia_[body] * turn);
+        };
+        const auto apply = [&](const Vec3& p) {
+          const Vec3 impulse = upper == 0 ? p : Vec3(-p);
+          vel[body] += impulse * invMass_[body];
+          omega[body] += invInertia_[body] * arm.cross(impulse);
+        };
+        if (friction) {  // Coulomb, within what the sweeps and this pass pushed together
+          const Vec3 v = relative();
+          const double k1 = along(c.t1), k2 = along(c.t2);
+          if (k1 > 0 && k2 > 0) {
+            double l1 = c.lambdaT1 + c.shockT1 - v.dot(c.t1) / k1;
+            double l2 = c.lambdaT2 + c.shockT2 - v.dot(c.t2) / k2;
+            const double bound = c.friction * (c.lambdaN + c.shockN);
+            const double len = std::sqrt(l1 * l1 + l2 * l2);
+            if (len > bound) {
+              const double scale = len > 0 ? bound / len : 0.0;
+              l1 *= scale;
+              l2 *= scale;
+            }
+            l1 -= c.lambdaT1;
+            l2 -= c.lambdaT2;
+            apply((l1 - c.shockT1) * c.t1 + (l2 - c.shockT2) * c.t2);
+            c.shockT1 = l1;
+            c.shockT2 = l2;
+          }
+        }
+        const double kn = along(c.normal);
+        if (!(kn > 0)) continue;
+        const double next = std::max(0.0, c.shockN + (target(c) - relative().dot(c.normal)) / kn);
+        apply((next - c.shockN) * c.normal);
+        c.shockN = next;
+      }
+    }
+  }
 }
 
 // The impact law above sets each contact's velocity after the impact on its own (the
@@ -794,6 +941,10 @@ void RigidSolver::solvePositions(double dt) {
       c.lambdaP = next;
     }
   }
+  const double correction = settings.correction;
+  propagateShock(pseudoVel_, pseudoOmega_, false, [correction, dt](const Contact& c) {
+    return std::max(0.0, correction * (c.depth - c.slop) / dt);
+  });
 }
 
 bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,

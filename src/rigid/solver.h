@@ -63,6 +63,8 @@ struct Contact {
   double impactN = 0, impactT1 = 0;  ///< the impact law's targets, before an energy check scales them
   double lambdaN = 0, lambdaT1 = 0, lambdaT2 = 0, lambdaP = 0;
   double warmN = 0, warmT1 = 0, warmT2 = 0;  ///< where the impulses start: last substep's at this point
+  double shockN = 0, shockT1 = 0,
+         shockT2 = 0;  ///< what shock propagation added (RigidSolver::propagateShock)
 };
 
 /// Slots of a pair of particles of which at least one belongs to a body, of two
@@ -133,6 +135,12 @@ class RigidSolver {
   void solveVelocities();
   void solveVelocitiesWithoutGain(const Vec3& gravity);
   void solvePositions(double dt);
+  /// After the sweeps: resting contacts level by level from the ground up, each one's
+  /// lower body held still (solver.cpp). `vel`, `omega`: the velocities (with
+  /// `friction`) or the pseudo-velocities; target(c): the closing speed contact c must
+  /// reach at least.
+  template <class Target>
+  void propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omega, bool friction, Target target);
   /// True when a dynamic body took an impulse.
   bool pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
                     std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
@@ -184,7 +192,12 @@ class RigidSolver {
   std::vector<Vec3> startVel_, startOmega_;  ///< per body: velocities at the start of the substep
   std::vector<double> lift_;                 ///< per body: the height the overlap fix will lift it by
   std::vector<Vec3> savedVel_, savedOmega_;
-  std::vector<char> recalled_;  ///< per memory entry: taken by a contact of this substep
+  std::vector<char> recalled_;
+  std::vector<std::int32_t> level_;  ///< per body: contacts from the ground (-1: none), propagateShock
+  std::vector<std::uint32_t> levelQueue_, levelStart_, levelOrder_, levelFill_;
+  std::vector<std::array<std::uint32_t, 2>> levelLinks_;
+  std::vector<char> shocked_;  ///< per island: takes propagateShock  ///< per memory entry: taken by a
+                               ///< contact of this substep
 };
 
 }  // namespace softsub::rigid
