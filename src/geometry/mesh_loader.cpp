@@ -429,6 +429,7 @@ std::string objForAssimp(std::string_view text) {
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   std::string out;
   out.reserve(text.size());
+  bool continued = false;  // the last line ended with a backslash: this one is part of it
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     std::string_view line = text.substr(0, end);
@@ -436,6 +437,19 @@ std::string objForAssimp(std::string_view text) {
     const bool newline = end != std::string_view::npos;
     std::size_t at = 0;
     while (at < line.size() && isBlank(line[at])) ++at;
+    const bool part = continued;
+    {
+      std::string_view body = line;
+      if (!body.empty() && body.back() == '\r') body.remove_suffix(1);
+      continued = !body.empty() && body.back() == '\\';
+    }
+    if (part) {  // the rest of a continued line: as it is
+      out += line;
+      if (newline) out += '\n';
+      continue;
+    }
+    line.remove_prefix(at);  // assimp skipped an indented line (and shifted the vertex numbers after it)
+    at = 0;
     std::size_t keywordEnd = at;
     while (keywordEnd < line.size() && !isBlank(line[keywordEnd]) && line[keywordEnd] != '\r') ++keywordEnd;
     const std::string_view keyword = line.substr(at, keywordEnd - at);

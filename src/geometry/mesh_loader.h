@@ -44,8 +44,10 @@ std::size_t orientConsistently(TriangleMesh& mesh);
 /// after the data of a `v`, `vt`, `vn`, `f`, `l` or `p` line (assimp refused
 /// `f 1 2 3 # a note`), and without the fourth number of a `v x y z w` line (w weighs
 /// the control points of rational curves; Blender and Maya ignore it on polygon
-/// vertices, assimp divided the position by it). Every other line, and every line
-/// ending, is kept as it is.
+/// vertices, assimp divided the position by it), and without a line's indentation
+/// (assimp skipped an indented line, which shifted the vertex numbers after it: a
+/// silent misreading). The rest of a line continued with a backslash, every other
+/// character, and every line ending are kept as they are.
 [[nodiscard]] std::string objForAssimp(std::string_view text);
 
 /// Files larger than this are refused before anything is read.

@@ -136,21 +136,28 @@ TEST(LoadMesh, AnObjWithAByteOrderMarkLoadsAsWithout) {
 // What exporters write that assimp's OBJ reader got wrong (a black-box review,
 // twenty-sixth session): a comment after a face's indices was refused ("f 1 2 3 # a
 // note"), and a vertex's optional fourth number, w (a weight for rational curves, which
-// Blender and Maya ignore on polygon vertices), divided its position. objForAssimp drops
-// both before assimp reads the file, and leaves everything else as it was.
+// Blender and Maya ignore on polygon vertices), divided its position, and an indented
+// line was skipped, which shifted the vertex numbers after it (a cube with one unused
+// vertex came back 4.75 wide, silently; a second review, twenty-ninth session).
+// objForAssimp drops all three before assimp reads the file, and leaves everything else
+// as it was.
 TEST(LoadMesh, ObjCommentsAfterDataAndVertexWeightsAreIgnored) {
   EXPECT_EQ(objForAssimp("v 1 2 3 0.5\nv 1 2 3\nf 1 2 3 # a note\n"), "v 1 2 3 \nv 1 2 3\nf 1 2 3 \n");
   EXPECT_EQ(objForAssimp("v 1 2 3 2\r\nf 1 2 3#x\r\n"), "v 1 2 3 \r\nf 1 2 3\r\n") << "line endings kept";
   EXPECT_EQ(objForAssimp("\xEF\xBB\xBFv 0 0 0\n"), "v 0 0 0\n") << "the byte-order mark dropped";
+  EXPECT_EQ(objForAssimp("  v 1 2 3\n\tf 1 2 3\n"), "v 1 2 3\nf 1 2 3\n") << "indentation dropped";
+  EXPECT_EQ(objForAssimp("f 1 2 \\\n   3\n"), "f 1 2 \\\n   3\n") << "a continued line kept";
   // Vertex colours (six or seven numbers), names with a '#', and comment lines are kept.
   for (const char* kept : {"v 1 2 3 0.1 0.2 0.3\n", "v 1 2 3 1 0.1 0.2 0.3\n", "usemtl red#2\n", "o part#1\n",
-                           "# v 1 2 3 4\n", "mtllib a#b.mtl", "vt 0.5 0.5 0\n", "\tv  1 2 3\n", ""})
+                           "# v 1 2 3 4\n", "mtllib a#b.mtl", "vt 0.5 0.5 0\n", "v  1 2 3\n", ""})
     EXPECT_EQ(objForAssimp(kept), kept);
   std::string odd = kCubeObj;
   for (std::size_t at = odd.find("\nv "); at != std::string::npos; at = odd.find("\nv ", at + 1))
     odd.insert(odd.find('\n', at + 1), " 2");  // w = 2 on every vertex
   for (std::size_t at = odd.find("\nf "); at != std::string::npos; at = odd.find("\nf ", at + 1))
     odd.insert(odd.find('\n', at + 1), "  # a quad");
+  odd.insert(odd.find("\nv 1 0 0") + 1, "  ");  // one vertex indented: assimp skipped it
+  odd += "v 9 9 9\n";                           // and a vertex no face uses, which the skip made used
   ASSERT_NE(odd.find("v 1 1 1 2\n"), std::string::npos);
   ASSERT_NE(odd.find("7//6  # a quad\n"), std::string::npos);
   TempDir dir;
