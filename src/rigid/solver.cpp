@@ -204,6 +204,15 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
   }
 }
 
+void RigidSolver::prepareDrag(const BodySet& set, const std::vector<BodyState>& states,
+                              const ParticleStore& s, std::span<const SlotPair> pairs,
+                              std::span<const float> materialInverseMass,
+                              const forces::InteractionTable& table, const Vec3& gravity, double dt) {
+  if (set.empty()) return;
+  gatherDrag(set, states, s, pairs, table, materialInverseMass, gravity, dt);
+  dragReady_ = true;
+}
+
 // The fluid particles' share of the implicit drag (gatherDrag): each had its explicit
 // step e_f / m added to its velocity (and, when the integrator drifts after kicking, to
 // its position over `drift`); it gets dv_f = A_f⁻¹ (e_f + dt sum_b G_fb dq_b) instead.
@@ -1000,7 +1009,8 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
   writeParticles(set, states, s);
   gatherForces(set, states, s);
   if (table != nullptr) {
-    gatherDrag(set, states, s, pairs, *table, materialInverseMass, gravity, dt);
+    if (!dragReady_) gatherDrag(set, states, s, pairs, *table, materialInverseMass, gravity, dt);
+    dragReady_ = false;
     dragStep_.resize(nb);
   } else {
     dragged_.assign(nb, 0);

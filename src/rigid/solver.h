@@ -99,6 +99,16 @@ class RigidSolver {
             std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
             const Vec3& gravity, double dt, double fluidDrift);
 
+  /// The fluid/body drag's implicit system (gatherDrag) set up now, for the next step():
+  /// call it where the forces in `store.f` were evaluated, before the fluid is kicked and
+  /// moved, so that the drag the system takes implicitly is the one in those forces (set
+  /// up after the fluid had moved, a fluid particle that had just come within reach of a
+  /// fine body, or just left it, was given a drag its forces did not hold: thrown back
+  /// faster than it came). Without this call, step() sets it up itself.
+  void prepareDrag(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store,
+                   std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                   const forces::InteractionTable& table, const Vec3& gravity, double dt);
+
   /// The contacts of the last step (tests, diagnostics).
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
 
@@ -153,6 +163,7 @@ class RigidSolver {
   std::vector<Eigen::Matrix<double, 6, 6>> drag_;
   std::vector<Eigen::Matrix<double, 6, 1>> dragStep_;  ///< per dragged body: its free motion's (dV, dw)
   std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;
+  bool dragReady_ = false;  ///< prepareDrag ran for the coming step
   std::vector<char> dragged_;
   // Per fluid particle within reach of a body's drag, during a step.
   struct FluidDrag {

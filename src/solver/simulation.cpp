@@ -273,6 +273,12 @@ void Simulation::listRigidPairs() {
   });
 }
 
+void Simulation::prepareBodies() {
+  if (model_.bodies.empty()) return;
+  rigid_.prepareDrag(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
+                     model_.table, model_.gravity, this->dt());
+}
+
 void Simulation::stepBodies(double dt) {
   if (model_.bodies.empty()) return;
   rigid_.step(
@@ -602,6 +608,7 @@ void Simulation::step() {
         sweep(dt, dt, explicitEuler, true);
         return;
       }
+      prepareBodies();  // where the forces were evaluated
       if (explicitEuler) {
         drift(dt);  // with v_n
         kick(dt);
@@ -625,6 +632,7 @@ void Simulation::step() {
       if (fused) {
         sweep(opening, dt, false, !closes);  // checked here unless the closing kick follows
       } else {
+        prepareBodies();  // where the forces were evaluated
         kick(opening);
         drift(dt);
         applyWalls();

@@ -145,6 +145,9 @@ class Simulation {
   void sweep(float h, float dt, bool explicitEuler, bool check);
   struct ParticleOps;
   [[nodiscard]] ParticleOps particleOps();
+  /// The bodies' implicit drag set up at the positions the forces were evaluated at
+  /// (rigid::RigidSolver::prepareDrag), before the fluid moves.
+  void prepareBodies();
   void stepBodies(double dt);
   void listRigidPairs();
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
