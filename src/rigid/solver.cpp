@@ -225,6 +225,19 @@ void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInv
       const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
       w += dt * (cp.g * dragStep_[cp.body]);
     }
+    if (fluid.first >= 0 && couplings_[static_cast<std::size_t>(fluid.first)].next >= 0) {
+      // A particle dragging two bodies or more: each body's solve held the others still,
+      // so it took the drag of a particle that did not feel their pull. Each body gets
+      // the rest of its drag, dt G_fbᵀ A_f⁻¹ dt sum_{b' != b} G_fb' dq_b', on its own
+      // mass (the particle is not moved again): momentum is kept.
+      for (std::int32_t at = fluid.first; at >= 0; at = couplings_[static_cast<std::size_t>(at)].next) {
+        const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
+        const Vec3 others = fluid.inverse * (w - fluid.step - dt * (cp.g * dragStep_[cp.body]));
+        const Eigen::Matrix<double, 6, 1> rest = dt * (cp.g.transpose() * others);
+        vel_[cp.body] += rest.head<3>() * invMass_[cp.body];
+        omega_[cp.body] += invInertia_[cp.body] * rest.tail<3>();
+      }
+    }
     const Vec3 change =
         fluid.inverse * w - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
     s.vx[f] += static_cast<float>(change.x());
@@ -407,24 +420,56 @@ void RigidSolver::collectContacts(const BodySet& set, const ParticleStore& s, st
 
 namespace {
 
+// The velocities an impulse changes, and how: a body's own mass and inertia, or, for a
+// body dragging fluid along (`coupled`, RigidSolver::step), its 6 x 6 mobility: the
+// inverse of its mass with the dragged fluid's coupled inertia, so a contact impulse
+// moves it and that fluid together, and the fluid following the body's whole-substep
+// motion takes no momentum the contacts did not give.
 struct BodyRefs {
   std::vector<Vec3>& vel;
   std::vector<Vec3>& omega;
   const std::vector<Mat3>& invInertia;
   const std::vector<double>& invMass;
+  const std::vector<Eigen::Matrix<double, 6, 6>>* mobility = nullptr;
+  const std::vector<char>* coupled = nullptr;
 
+  [[nodiscard]] bool isCoupled(std::int32_t b) const { return coupled != nullptr && (*coupled)[b]; }
   [[nodiscard]] Vec3 relative(const Contact& c) const {
     Vec3 v = vel[c.a] + omega[c.a].cross(c.ra);
     if (c.b >= 0) v -= vel[c.b] + omega[c.b].cross(c.rb);
     return v;
   }
-  void apply(const Contact& c, const Vec3& impulse) {
-    vel[c.a] += impulse * invMass[c.a];
-    omega[c.a] += invInertia[c.a] * c.ra.cross(impulse);
-    if (c.b >= 0) {
-      vel[c.b] -= impulse * invMass[c.b];
-      omega[c.b] -= invInertia[c.b] * c.rb.cross(impulse);
+  /// Body b's inverse mass along d at arm r: how fast its point there moves along d per
+  /// unit impulse along d.
+  [[nodiscard]] double along(std::int32_t b, const Vec3& r, const Vec3& d) const {
+    const Vec3 turn = r.cross(d);
+    if (isCoupled(b)) {
+      Eigen::Matrix<double, 6, 1> j;
+      j << d, turn;
+      return j.dot((*mobility)[b] * j);
     }
+    return invMass[b] + turn.dot(invInertia[b] * turn);
+  }
+  /// The impulse p at arm r on body b.
+  void push(std::int32_t b, const Vec3& r, const Vec3& p) {
+    if (isCoupled(b)) {
+      Eigen::Matrix<double, 6, 1> j;
+      j << p, r.cross(p);
+      const Eigen::Matrix<double, 6, 1> dq = (*mobility)[b] * j;
+      vel[b] += dq.head<3>();
+      omega[b] += dq.tail<3>();
+      return;
+    }
+    vel[b] += p * invMass[b];
+    omega[b] += invInertia[b] * r.cross(p);
+  }
+  void apply(const Contact& c, const Vec3& impulse) {
+    push(c.a, c.ra, impulse);
+    if (c.b >= 0) push(c.b, c.rb, -impulse);
+  }
+  /// The contact's inverse mass along d, both bodies.
+  [[nodiscard]] double contact(const Contact& c, const Vec3& d) const {
+    return along(c.a, c.ra, d) + (c.b >= 0 ? along(c.b, c.rb, d) : 0.0);
   }
 };
 
@@ -501,14 +546,10 @@ void RigidSolver::prepareContacts(double dt, const Vec3& gravity) {
   // Below this approach speed a contact is resting: one substep of gravity (with margin)
   // must not bounce, or a body at rest would jitter.
   const double restingSpeed = 3.0 * gravity.norm() * dt + 1e-9;
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
   BodyRefs start{startVel_, startOmega_, invInertia_, invMass_};
   for (Contact& c : contacts_) {
-    const double ima = invMass_[c.a];
-    const Mat3& iia = invInertia_[c.a];
-    const double imb = c.b >= 0 ? invMass_[c.b] : 0.0;
-    const Mat3& iib = c.b >= 0 ? invInertia_[c.b] : kZero3;
-    c.massN = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.normal);
+    c.massN = 1.0 / refs.contact(c, c.normal);
     const Vec3 v = refs.relative(c);
     const double vn = v.dot(c.normal);
     const Vec3 vt = v - vn * c.normal;
@@ -520,8 +561,8 @@ void RigidSolver::prepareContacts(double dt, const Vec3& gravity) {
                                           : c.normal.cross(Vec3::UnitY()).normalized();
     }
     c.t2 = c.normal.cross(c.t1);
-    c.massT1 = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.t1);
-    c.massT2 = 1.0 / inverseMassAlong(ima, iia, c.ra, imb, iib, c.rb, c.t2);
+    c.massT1 = 1.0 / refs.contact(c, c.t1);
+    c.massT2 = 1.0 / refs.contact(c, c.t2);
     const bool impact = vn < -restingSpeed;
     // An impact bounces with restitution e and keeps (1 - friction) of its sliding speed
     // (the seed's attenuations); a resting contact neither bounces nor slides (Coulomb).
@@ -596,7 +637,7 @@ void RigidSolver::rememberImpulses(std::vector<ContactMemory>& memory, double dt
 }
 
 void RigidSolver::applyWarmStart() {
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
   for (Contact& c : contacts_) {
     const double scale = islands_[island_[c.a]].scale;  // a is dynamic: it has an island
     c.lambdaN = scale * c.warmN;
@@ -613,7 +654,7 @@ void RigidSolver::applyWarmStart() {
 // J = -(1 + e) v_rel . n / (1/m1 + 1/m2 + (I1⁻¹ (r1 x n) x r1 + I2⁻¹ (r2 x n) x r2) . n),
 // reached iteratively so that many contacts between the same bodies share it.
 void RigidSolver::solveVelocities() {
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
   for (int it = 0; it < settings.velocityIterations; ++it) {
     for (Contact& c : contacts_) {
       // Friction first, with the normal impulse of the previous sweep as its bound.
@@ -728,6 +769,7 @@ void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omeg
         order[fill[static_cast<std::size_t>(levelOf(contacts_[k], u))]++] = static_cast<std::uint32_t>(k);
   }
   for (Contact& c : contacts_) c.shockN = c.shockT1 = c.shockT2 = 0;
+  BodyRefs refs{vel, omega, invInertia_, invMass_, &mobility_, &coupled_};  // as the sweeps
   constexpr int kSweeps = 8;
   for (std::int32_t level = 0; level < levels; ++level) {
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
@@ -744,15 +786,8 @@ void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omeg
           if (c.b >= 0) v -= vel[c.b] + omega[c.b].cross(c.rb);
           return v;
         };
-        const auto along = [&](const Vec3& d) {
-          const Vec3 turn = arm.cross(d);
-          return invMass_[body] + turn.dot(invInertia_[body] * turn);
-        };
-        const auto apply = [&](const Vec3& p) {
-          const Vec3 impulse = upper == 0 ? p : Vec3(-p);
-          vel[body] += impulse * invMass_[body];
-          omega[body] += invInertia_[body] * arm.cross(impulse);
-        };
+        const auto along = [&](const Vec3& d) { return refs.along(body, arm, d); };
+        const auto apply = [&](const Vec3& p) { refs.push(body, arm, upper == 0 ? p : Vec3(-p)); };
         if (friction) {  // Coulomb, within what the sweeps and this pass pushed together
           const Vec3 v = relative();
           const double k1 = along(c.t1), k2 = along(c.t2);
@@ -938,7 +973,8 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
 // by pseudo-velocities that move the bodies but add no momentum (split impulses), so
 // fixing an overlap never launches a body.
 void RigidSolver::solvePositions(double dt) {
-  BodyRefs refs{pseudoVel_, pseudoOmega_, invInertia_, invMass_};
+  // With the mobility the contacts' masses (massN) were found with.
+  BodyRefs refs{pseudoVel_, pseudoOmega_, invInertia_, invMass_, &mobility_, &coupled_};
   for (int it = 0; it < settings.positionIterations; ++it) {
     for (Contact& c : contacts_) {
       const double error = c.depth - c.slop;
@@ -1017,6 +1053,8 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     fluids_.clear();
   }
   pos_.resize(nb); vel_.resize(nb); omega_.resize(nb); invInertia_.resize(nb); invMass_.resize(nb);
+  mobility_.resize(nb);
+  coupled_.assign(nb, 0);
   startVel_.assign(nb, Vec3::Zero());
   startOmega_.assign(nb, Vec3::Zero());
   pseudoVel_.assign(nb, Vec3::Zero());
@@ -1044,8 +1082,11 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
       Eigen::Matrix<double, 6, 1> q;
       q << (force_[b] + info.mass * gravity) * dt, torque_[b] * dt;
       q += dt * dragRhs_[b];
-      const Eigen::Matrix<double, 6, 1> dq = a.ldlt().solve(q);
+      const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solve = a.ldlt();
+      const Eigen::Matrix<double, 6, 1> dq = solve.solve(q);
       dragStep_[b] = dq;
+      mobility_[b] = solve.solve(Eigen::Matrix<double, 6, 6>::Identity());
+      coupled_[b] = 1;
       st.velocity += dq.head<3>();
       st.angularMomentum += inertia * dq.tail<3>();
     } else {

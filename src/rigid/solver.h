@@ -164,6 +164,10 @@ class RigidSolver {
   std::vector<Eigen::Matrix<double, 6, 1>> dragStep_;  ///< per dragged body: its free motion's (dV, dw)
   std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;
   bool dragReady_ = false;  ///< prepareDrag ran for the coming step
+  /// Per body dragging fluid (coupled_): the inverse of M + dt (C - dt sum G_fᵀ A_f⁻¹ G_f),
+  /// its mobility with the dragged fluid's inertia, which the contacts use.
+  std::vector<Eigen::Matrix<double, 6, 6>> mobility_;
+  std::vector<char> coupled_;
   std::vector<char> dragged_;
   // Per fluid particle within reach of a body's drag, during a step.
   struct FluidDrag {
