@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
@@ -34,6 +35,31 @@ scene::SceneDesc floorScene(double restitution, double friction) {
   env.tangentAttenuation = friction;
   d.environment = env;
   return d;
+}
+
+// 18 mud particles dropped 0.5 to 1.7 onto a pallet of mass 2 made of 1,600 particles of
+// 0.25 (a review's scene); `pallet` is added to the pallet's element, `interactions`
+// after it.
+std::string mudOnAPallet(const std::string& pallet, const std::string& interactions) {
+  return std::string(R"(<Scene version="1"><Environment><Width>20</Width><Height>24</Height><Depth>14</Depth>
+         <NormalAttenuation>0.2</NormalAttenuation><TangentAttenuation>0.6</TangentAttenuation></Environment>
+         <Fluid><Name>mud</Name><Amplitude>20</Amplitude><MinimumForce>-6</MinimumForce><Viscosity>6</Viscosity>
+         <Fill><Shape>box</Shape><Min>0 1.0 -2.4</Min><Max>1.6 2.2 -0.8</Max><Spacing>0.8</Spacing></Fill></Fluid>
+         <Object><Name>pallet</Name><Shape>box</Shape><Size>10 0.5 5</Size><ParticleSize>0.25</ParticleSize>
+         <InitialPosition>0 0.25 0</InitialPosition><Mass>2</Mass>)") +
+         pallet + "</Object>" + interactions + "</Scene>";
+}
+
+// The highest total energy at the start and at the end of each of `frames` frames;
+// `each` is called after each frame.
+double highestTotal(BodyRun& run, int frames, const std::function<void()>& each = {}) {
+  double most = solver::measureEnergy(run.compiled.model, run.sim->state()).total();
+  for (int f = 0; f < frames; ++f) {
+    run.sim->advanceFrame();
+    most = std::max(most, solver::measureEnergy(run.compiled.model, run.sim->state()).total());
+    if (each) each();
+  }
+  return most;
 }
 
 // Height of the centre of mass at which the body's lowest particle touches the floor.
@@ -327,11 +353,7 @@ TEST(BodyScenes, ABoxFiveHundredTimesHeavierLandsOnAPlankNotThroughIt) {
     d.objects = {plank, box};
     BodyRun run(d);
     const double start = solver::measureEnergy(run.compiled.model, run.sim->state()).total();
-    double most = -1e300;
-    for (int f = 0; f < 72; ++f) {
-      run.sim->advanceFrame();
-      most = std::max(most, solver::measureEnergy(run.compiled.model, run.sim->state()).total());
-    }
+    const double most = highestTotal(run, 72);
     EXPECT_NEAR(run.body(1).position.y(), 1.0, 0.02) << "it rests on the plank (top 0.5)";
     EXPECT_LT(std::hypot(run.body(0).position.x(), run.body(0).position.z()), 0.05) << "the plank stays put";
     EXPECT_NEAR(run.body(0).position.y(), 0.25, 0.01);
@@ -395,22 +417,10 @@ TEST(BodyScenes, AHeavyBoxDroppedOnALightOneLandsWithoutBouncing) {
 // together: the pallet stays on the floor, nothing gains energy (the fluid's own slack
 // aside), and momentum is kept (the previous test).
 TEST(BodyScenes, ALightPalletUnderMudIsNotThrown) {
-  const scene::SceneDesc d = scene::readSceneText(
-      R"(<Scene version="1"><Environment><Width>20</Width><Height>24</Height><Depth>14</Depth>
-         <NormalAttenuation>0.2</NormalAttenuation><TangentAttenuation>0.6</TangentAttenuation></Environment>
-         <Fluid><Name>mud</Name><Amplitude>20</Amplitude><MinimumForce>-6</MinimumForce><Viscosity>6</Viscosity>
-         <Fill><Shape>box</Shape><Min>0 1.0 -2.4</Min><Max>1.6 2.2 -0.8</Max><Spacing>0.8</Spacing></Fill></Fluid>
-         <Object><Name>pallet</Name><Shape>box</Shape><Size>10 0.5 5</Size><ParticleSize>0.25</ParticleSize>
-         <InitialPosition>0 0.25 0</InitialPosition><Mass>2</Mass></Object></Scene>)",
-      "mud.scene");
-  BodyRun run(d);
+  BodyRun run(scene::readSceneText(mudOnAPallet("", ""), "mud.scene"));
   const double start = solver::measureEnergy(run.compiled.model, run.sim->state()).total();
-  double most = start, highest = 0;
-  for (int f = 0; f < 48; ++f) {
-    run.sim->advanceFrame();
-    most = std::max(most, solver::measureEnergy(run.compiled.model, run.sim->state()).total());
-    highest = std::max(highest, run.body(0).position.y());
-  }
+  double highest = 0;
+  const double most = highestTotal(run, 48, [&] { highest = std::max(highest, run.body(0).position.y()); });
   EXPECT_LT(highest, 0.3) << "the pallet stays on the floor (its centre at 0.25)";
   EXPECT_LE(most, start * 1.01) << "start " << start;
   EXPECT_LT(rigid::kineticEnergy(run.info(0), run.body(0)), 0.01);
@@ -428,29 +438,22 @@ TEST(BodyScenes, MudOnAFinePalletWithStrongDragIsNotFlung) {
                               "<Damping>4</Damping><RelativeVelocity>0</RelativeVelocity>"}) {
       SCOPED_TRACE(std::string(dynamic ? "dynamic pallet, " : "static pallet, ") + terms);
       const scene::SceneDesc d = scene::readSceneText(
-          std::string(R"(<Scene version="1"><Environment><Width>20</Width><Height>24</Height><Depth>14</Depth>
-             <NormalAttenuation>0.2</NormalAttenuation><TangentAttenuation>0.6</TangentAttenuation></Environment>
-             <Fluid><Name>mud</Name><Amplitude>20</Amplitude><MinimumForce>-6</MinimumForce><Viscosity>6</Viscosity>
-             <Fill><Shape>box</Shape><Min>0 1.0 -2.4</Min><Max>1.6 2.2 -0.8</Max><Spacing>0.8</Spacing></Fill></Fluid>
-             <Object><Name>pallet</Name><Shape>box</Shape><Size>10 0.5 5</Size><ParticleSize>0.25</ParticleSize>
-             <InitialPosition>0 0.25 0</InitialPosition><Mass>2</Mass><IsDynamic>)") +
-              (dynamic ? "true" : "false") +
-              "</IsDynamic></Object><Interactions><FluidObject><Linear><AtZero>5</AtZero><Cutoff>1.5</Cutoff>"
-              "</Linear>" +
-              terms + "</FluidObject></Interactions></Scene>",
+          mudOnAPallet(
+              dynamic ? "" : "<IsDynamic>false</IsDynamic>",
+              std::string(
+                  "<Interactions><FluidObject><Linear><AtZero>5</AtZero><Cutoff>1.5</Cutoff></Linear>") +
+                  terms + "</FluidObject></Interactions>"),
           "mud.scene");
       BodyRun run(d);
       const double start = solver::measureEnergy(run.compiled.model, run.sim->state()).total();
-      double most = start, fastest = 0;
-      for (int f = 0; f < 24; ++f) {
-        run.sim->advanceFrame();
-        most = std::max(most, solver::measureEnergy(run.compiled.model, run.sim->state()).total());
+      double fastest = 0;
+      const double most = highestTotal(run, 24, [&] {
         const ParticleStore& p = run.sim->state().particles;
         for (std::size_t i = 0; i < p.size(); ++i)
           if (p.owner[i] < run.compiled.model.bodies.firstEntity)
             fastest = std::max(fastest, std::sqrt(double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
                                                   double(p.vz[i]) * p.vz[i]));
-      }
+      });
       EXPECT_LE(most, start * 1.01) << "start " << start;
       EXPECT_LT(fastest, 8.0) << "a fall of 1.2 gives about 5";
       if (dynamic) {
@@ -482,12 +485,7 @@ TEST(BodyScenes, FluidHittingAFineBodyWithStrongDragIsNotThrownBack) {
         "drop.scene");
     BodyRun one(drop);
     const double start = solver::measureEnergy(one.compiled.model, one.sim->state()).total();
-    double most = start;
-    for (int f = 0; f < 24; ++f) {
-      one.sim->advanceFrame();
-      most = std::max(most, solver::measureEnergy(one.compiled.model, one.sim->state()).total());
-    }
-    EXPECT_LE(most, start * 1.001) << "start " << start;
+    EXPECT_LE(highestTotal(one, 24), start * 1.001) << "start " << start;
     const scene::SceneDesc blob = scene::readSceneText(
         std::string(
             R"(<Scene version="1"><Simulation><Substeps>8</Substeps><Gravity>0 0 0</Gravity><Integrator>)") +
@@ -502,12 +500,7 @@ TEST(BodyScenes, FluidHittingAFineBodyWithStrongDragIsNotThrownBack) {
         "blob.scene");
     BodyRun run(blob);
     const double begin = solver::measureEnergy(run.compiled.model, run.sim->state()).total();
-    double highest = begin;
-    for (int f = 0; f < 48; ++f) {
-      run.sim->advanceFrame();
-      highest = std::max(highest, solver::measureEnergy(run.compiled.model, run.sim->state()).total());
-    }
-    EXPECT_LE(highest, begin * 1.001) << "start " << begin;
+    EXPECT_LE(highestTotal(run, 48), begin * 1.001) << "start " << begin;
     EXPECT_LT(run.body(0).velocity.norm(), 10.0) << "the box takes at most the blob's speed";
   }
 }
