@@ -225,19 +225,6 @@ void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInv
       const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
       w += dt * (cp.g * dragStep_[cp.body]);
     }
-    if (fluid.first >= 0 && couplings_[static_cast<std::size_t>(fluid.first)].next >= 0) {
-      // A particle dragging two bodies or more: each body's solve held the others still,
-      // so it took the drag of a particle that did not feel their pull. Each body gets
-      // the rest of its drag, dt G_fbᵀ A_f⁻¹ dt sum_{b' != b} G_fb' dq_b', on its own
-      // mass (the particle is not moved again): momentum is kept.
-      for (std::int32_t at = fluid.first; at >= 0; at = couplings_[static_cast<std::size_t>(at)].next) {
-        const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
-        const Vec3 others = fluid.inverse * (w - fluid.step - dt * (cp.g * dragStep_[cp.body]));
-        const Eigen::Matrix<double, 6, 1> rest = dt * (cp.g.transpose() * others);
-        vel_[cp.body] += rest.head<3>() * invMass_[cp.body];
-        omega_[cp.body] += invInertia_[cp.body] * rest.tail<3>();
-      }
-    }
     const Vec3 change =
         fluid.inverse * w - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
     s.vx[f] += static_cast<float>(change.x());
@@ -679,7 +666,7 @@ void RigidSolver::solveVelocities() {
       c.lambdaN = next;
     }
   }
-  propagateShock(vel_, omega_, true, [](const Contact&) { return 0.0; });
+  propagateShock();
 }
 
 // Shock propagation (after Guendelman, Bridson and Fedkiw 2003). Sweeps converge slowly
@@ -690,16 +677,17 @@ void RigidSolver::solveVelocities() {
 // level L + 1 (breadth first), and after the sweeps the resting contacts are visited
 // level by level from the ground up, each contact's lower body held still (infinite
 // mass): the plank is stopped by the floor, then the crate by the plank. Only resting
-// contacts (no impact target) between two levels take part, and only as a push along
-// the normal that stops the upper body closing in (`target` its closing speed allowed:
-// 0 for velocities, the overlap fix's for pseudo-velocities); where the sweeps
-// converged it does nothing. Bodies with no path to the ground (a stack falling
-// freely) have no level and are left to the sweeps, and so are islands without a mass
-// ratio of kShockRatio between two touching bodies.
-template <class Target>
-void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omega, bool friction,
-                                 Target target) {
-  const std::size_t nb = vel.size();
+// contacts (no impact target) between two levels take part: a push along the normal
+// that stops the upper body closing in, and friction within the Coulomb disk of what
+// the sweeps and this pass pushed together; where the sweeps converged it does nothing.
+// Bodies with no path to the ground (a stack falling freely) have no level and are left
+// to the sweeps, and so are islands without a mass ratio of kShockRatio between two
+// touching bodies. Velocities only: the same pass on the overlap fix's
+// pseudo-velocities held a dropped heavy box on a light plank too, but lifted a heavy
+// box on two light ones with what the sweeps had pushed the middle one up by (the total
+// rose 38% and the tower blew apart; a review, twenty-ninth session).
+void RigidSolver::propagateShock() {
+  const std::size_t nb = vel_.size();
   level_.assign(nb, -1);
   std::vector<std::uint32_t>& queue = levelQueue_;
   queue.clear();
@@ -769,7 +757,7 @@ void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omeg
         order[fill[static_cast<std::size_t>(levelOf(contacts_[k], u))]++] = static_cast<std::uint32_t>(k);
   }
   for (Contact& c : contacts_) c.shockN = c.shockT1 = c.shockT2 = 0;
-  BodyRefs refs{vel, omega, invInertia_, invMass_, &mobility_, &coupled_};  // as the sweeps
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};  // as the sweeps
   constexpr int kSweeps = 8;
   for (std::int32_t level = 0; level < levels; ++level) {
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
@@ -781,14 +769,10 @@ void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omeg
         const Vec3& arm = upper == 0 ? c.ra : c.rb;
         // The contact's impulse P (as on a) changes the closing velocity by K P with K
         // the upper body's own inverse mass along it, the lower body held still.
-        const auto relative = [&] {
-          Vec3 v = vel[c.a] + omega[c.a].cross(c.ra);
-          if (c.b >= 0) v -= vel[c.b] + omega[c.b].cross(c.rb);
-          return v;
-        };
+        const auto relative = [&] { return refs.relative(c); };
         const auto along = [&](const Vec3& d) { return refs.along(body, arm, d); };
         const auto apply = [&](const Vec3& p) { refs.push(body, arm, upper == 0 ? p : Vec3(-p)); };
-        if (friction) {  // Coulomb, within what the sweeps and this pass pushed together
+        {  // Coulomb friction, within what the sweeps and this pass pushed together
           const Vec3 v = relative();
           const double k1 = along(c.t1), k2 = along(c.t2);
           if (k1 > 0 && k2 > 0) {
@@ -810,7 +794,7 @@ void RigidSolver::propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omeg
         }
         const double kn = along(c.normal);
         if (!(kn > 0)) continue;
-        const double next = std::max(0.0, c.shockN + (target(c) - relative().dot(c.normal)) / kn);
+        const double next = std::max(0.0, c.shockN - relative().dot(c.normal) / kn);
         apply((next - c.shockN) * c.normal);
         c.shockN = next;
       }
@@ -986,10 +970,6 @@ void RigidSolver::solvePositions(double dt) {
       c.lambdaP = next;
     }
   }
-  const double correction = settings.correction;
-  propagateShock(pseudoVel_, pseudoOmega_, false, [correction, dt](const Contact& c) {
-    return std::max(0.0, correction * (c.depth - c.slop) / dt);
-  });
 }
 
 bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,

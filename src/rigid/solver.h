@@ -146,11 +146,8 @@ class RigidSolver {
   void solveVelocitiesWithoutGain(const Vec3& gravity);
   void solvePositions(double dt);
   /// After the sweeps: resting contacts level by level from the ground up, each one's
-  /// lower body held still (solver.cpp). `vel`, `omega`: the velocities (with
-  /// `friction`) or the pseudo-velocities; target(c): the closing speed contact c must
-  /// reach at least.
-  template <class Target>
-  void propagateShock(std::vector<Vec3>& vel, std::vector<Vec3>& omega, bool friction, Target target);
+  /// lower body held still (solver.cpp).
+  void propagateShock();
   /// True when a dynamic body took an impulse.
   bool pushFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
                     std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
