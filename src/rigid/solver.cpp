@@ -134,6 +134,7 @@ void RigidSolver::gatherDrag(const BodySet& set, const std::vector<BodyState>& s
   drag_.resize(nb);
   dragRhs_.resize(nb);
   dragged_.assign(nb, 0);
+  for (const FluidDrag& fluid : fluids_) fluidRow_[fluid.slot] = kNoRow;  // a step left unfinished
   fluids_.clear();
   couplings_.clear();
   if (!table.hasVelocityTerms()) return;
@@ -1030,6 +1031,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     dragStep_.resize(nb);
   } else {
     dragged_.assign(nb, 0);
+    for (const FluidDrag& fluid : fluids_) fluidRow_[fluid.slot] = kNoRow;
     fluids_.clear();
   }
   pos_.resize(nb); vel_.resize(nb); omega_.resize(nb); invInertia_.resize(nb); invMass_.resize(nb);

@@ -63,8 +63,8 @@ struct Contact {
   double impactN = 0, impactT1 = 0;  ///< the impact law's targets, before an energy check scales them
   double lambdaN = 0, lambdaT1 = 0, lambdaT2 = 0, lambdaP = 0;
   double warmN = 0, warmT1 = 0, warmT2 = 0;  ///< where the impulses start: last substep's at this point
-  double shockN = 0, shockT1 = 0,
-         shockT2 = 0;  ///< what shock propagation added (RigidSolver::propagateShock)
+  /// What shock propagation added (RigidSolver::propagateShock).
+  double shockN = 0, shockT1 = 0, shockT2 = 0;
 };
 
 /// Slots of a pair of particles of which at least one belongs to a body, of two
@@ -158,8 +158,9 @@ class RigidSolver {
   // Per body, during a step.
   std::vector<Vec3> force_, torque_;
   std::vector<Eigen::Matrix<double, 6, 6>> drag_;
-  std::vector<Eigen::Matrix<double, 6, 1>> dragStep_;  ///< per dragged body: its free motion's (dV, dw)
-  std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;
+  std::vector<Eigen::Matrix<double, 6, 1>>
+      dragStep_;  ///< per dragged body: its substep's (dV, dw), contacts included
+  std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;  ///< per dragged body: sum G_fᵀ A_f⁻¹ e_f
   bool dragReady_ = false;  ///< prepareDrag ran for the coming step
   /// Per body dragging fluid (coupled_): the inverse of M + dt (C - dt sum G_fᵀ A_f⁻¹ G_f),
   /// its mobility with the dragged fluid's inertia, which the contacts use.
@@ -204,12 +205,14 @@ class RigidSolver {
   std::vector<Vec3> startVel_, startOmega_;  ///< per body: velocities at the start of the substep
   std::vector<double> lift_;                 ///< per body: the height the overlap fix will lift it by
   std::vector<Vec3> savedVel_, savedOmega_;
-  std::vector<char> recalled_;
-  std::vector<std::int32_t> level_;  ///< per body: contacts from the ground (-1: none), propagateShock
+  std::vector<char> recalled_;  ///< per memory entry: taken by a contact of this substep
+  // propagateShock's work: per body its level (contacts from the ground, -1: none), the
+  // breadth-first queue, the contacts by level, the body links; per island whether it
+  // takes the pass.
+  std::vector<std::int32_t> level_;
   std::vector<std::uint32_t> levelQueue_, levelStart_, levelOrder_, levelFill_;
   std::vector<std::array<std::uint32_t, 2>> levelLinks_;
-  std::vector<char> shocked_;  ///< per island: takes propagateShock  ///< per memory entry: taken by a
-                               ///< contact of this substep
+  std::vector<char> shocked_;
 };
 
 }  // namespace softsub::rigid
