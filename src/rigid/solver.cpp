@@ -409,7 +409,7 @@ void RigidSolver::collectContacts(const BodySet& set, const ParticleStore& s, st
 namespace {
 
 // The velocities an impulse changes, and how: a body's own mass and inertia, or, for a
-// body dragging fluid along (`coupled`, RigidSolver::step), its 6 x 6 mobility: the
+// body dragging fluid along (`coupled`: RigidSolver's dragged_), its 6 x 6 mobility: the
 // inverse of its mass with the dragged fluid's coupled inertia, so a contact impulse
 // moves it and that fluid together, and the fluid following the body's whole-substep
 // motion takes no momentum the contacts did not give.
@@ -534,7 +534,7 @@ void RigidSolver::prepareContacts(double dt, const Vec3& gravity) {
   // Below this approach speed a contact is resting: one substep of gravity (with margin)
   // must not bounce, or a body at rest would jitter.
   const double restingSpeed = 3.0 * gravity.norm() * dt + 1e-9;
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &dragged_};
   BodyRefs start{startVel_, startOmega_, invInertia_, invMass_};
   for (Contact& c : contacts_) {
     c.massN = 1.0 / refs.contact(c, c.normal);
@@ -625,7 +625,7 @@ void RigidSolver::rememberImpulses(std::vector<ContactMemory>& memory, double dt
 }
 
 void RigidSolver::applyWarmStart() {
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &dragged_};
   for (Contact& c : contacts_) {
     const double scale = islands_[island_[c.a]].scale;  // a is dynamic: it has an island
     c.lambdaN = scale * c.warmN;
@@ -642,7 +642,7 @@ void RigidSolver::applyWarmStart() {
 // J = -(1 + e) v_rel . n / (1/m1 + 1/m2 + (I1⁻¹ (r1 x n) x r1 + I2⁻¹ (r2 x n) x r2) . n),
 // reached iteratively so that many contacts between the same bodies share it.
 void RigidSolver::solveVelocities() {
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &dragged_};
   for (int it = 0; it < settings.velocityIterations; ++it) {
     for (Contact& c : contacts_) {
       // Friction first, with the normal impulse of the previous sweep as its bound.
@@ -758,7 +758,7 @@ void RigidSolver::propagateShock() {
         order[fill[static_cast<std::size_t>(levelOf(contacts_[k], u))]++] = static_cast<std::uint32_t>(k);
   }
   for (Contact& c : contacts_) c.shockN = c.shockT1 = c.shockT2 = 0;
-  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &coupled_};  // as the sweeps
+  BodyRefs refs{vel_, omega_, invInertia_, invMass_, &mobility_, &dragged_};  // as the sweeps
   constexpr int kSweeps = 8;
   for (std::int32_t level = 0; level < levels; ++level) {
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
@@ -959,7 +959,7 @@ void RigidSolver::solveVelocitiesWithoutGain(const Vec3& gravity) {
 // fixing an overlap never launches a body.
 void RigidSolver::solvePositions(double dt) {
   // With the mobility the contacts' masses (massN) were found with.
-  BodyRefs refs{pseudoVel_, pseudoOmega_, invInertia_, invMass_, &mobility_, &coupled_};
+  BodyRefs refs{pseudoVel_, pseudoOmega_, invInertia_, invMass_, &mobility_, &dragged_};
   for (int it = 0; it < settings.positionIterations; ++it) {
     for (Contact& c : contacts_) {
       const double error = c.depth - c.slop;
@@ -1036,7 +1036,6 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
   }
   pos_.resize(nb); vel_.resize(nb); omega_.resize(nb); invInertia_.resize(nb); invMass_.resize(nb);
   mobility_.resize(nb);
-  coupled_.assign(nb, 0);
   startVel_.assign(nb, Vec3::Zero());
   startOmega_.assign(nb, Vec3::Zero());
   pseudoVel_.assign(nb, Vec3::Zero());
@@ -1066,9 +1065,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
       q += dt * dragRhs_[b];
       const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solve = a.ldlt();
       const Eigen::Matrix<double, 6, 1> dq = solve.solve(q);
-      dragStep_[b] = dq;
       mobility_[b] = solve.solve(Eigen::Matrix<double, 6, 6>::Identity());
-      coupled_[b] = 1;
       st.velocity += dq.head<3>();
       st.angularMomentum += inertia * dq.tail<3>();
     } else {

@@ -162,10 +162,9 @@ class RigidSolver {
       dragStep_;  ///< per dragged body: its substep's (dV, dw), contacts included
   std::vector<Eigen::Matrix<double, 6, 1>> dragRhs_;  ///< per dragged body: sum G_fᵀ A_f⁻¹ e_f
   bool dragReady_ = false;  ///< prepareDrag ran for the coming step
-  /// Per body dragging fluid (coupled_): the inverse of M + dt (C - dt sum G_fᵀ A_f⁻¹ G_f),
+  /// Per body dragging fluid (dragged_): the inverse of M + dt (C - dt sum G_fᵀ A_f⁻¹ G_f),
   /// its mobility with the dragged fluid's inertia, which the contacts use.
   std::vector<Eigen::Matrix<double, 6, 6>> mobility_;
-  std::vector<char> coupled_;
   std::vector<char> dragged_;
   // Per fluid particle within reach of a body's drag, during a step.
   struct FluidDrag {
