@@ -184,12 +184,13 @@ def _collect(context, name):
                     raise SceneError(f"{fwhere}: the mesh has no vertices")
                 lo = tuple(min(p[i] for p in pts) for i in range(3))
                 hi = tuple(max(p[i] for p in pts) for i in range(3))
-                f["fills"].append({"Shape": "box", "Min": lo, "Max": hi, "Spacing": fl.spacing})
+                f["fills"].append({"Shape": "box", "Min": lo, "Max": hi, "Spacing": fl.spacing,
+                                   "OutsideObjects": fl.outside_objects})
             elif fl.shape == "SPHERE":
                 radius = max(fo.dimensions) / 2
                 _check("Fill.sphere", "Radius", radius, fwhere)
                 f["fills"].append({"Shape": "sphere", "Center": axes.to_softsub(tuple(mw.translation)),
-                                   "Radius": radius, "Spacing": fl.spacing})
+                                   "Radius": radius, "Spacing": fl.spacing, "OutsideObjects": fl.outside_objects})
             else:
                 verts, tris = _evaluated_mesh_data(fo, depsgraph)
                 if not tris:
@@ -197,7 +198,8 @@ def _collect(context, name):
                 world = [axes.to_softsub(tuple(mw @ _vec(v))) for v in verts]
                 rel = geometry_file(fo.name)
                 meshes.append((rel, fo.name, world, tris))
-                f["fills"].append({"Shape": "mesh", "Geometry": rel, "Surface": fl.surface, "Spacing": fl.spacing})
+                f["fills"].append({"Shape": "mesh", "Geometry": rel, "Surface": fl.surface, "Spacing": fl.spacing,
+                                   "OutsideObjects": fl.outside_objects})
         if not f["Particles"] and not f["fills"]:
             raise SceneError(f"{where}: no particles: give the object points, fill a mesh with particles, or "
                              "add a fill volume")
@@ -463,6 +465,7 @@ def import_scene(context, path):
             fo.softsub_fill.fluid = obj
             fo.softsub_fill.shape = fill["Shape"].upper()
             fo.softsub_fill.spacing = fill["Spacing"]
+            fo.softsub_fill.outside_objects = fill.get("OutsideObjects", False)
             display.show_as_fill(fo)
     for o in model["objects"]:
         shape = o.get("Shape", "mesh")

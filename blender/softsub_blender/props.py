@@ -232,6 +232,7 @@ class SoftsubFill(bpy.types.PropertyGroup):
         ("MESH", "Mesh", "The closed mesh itself (written to <name>Geo/)")])
     spacing: fprop("Fill", "Spacing")
     surface: bprop("Fill.mesh", "Surface", name="Surface only")
+    outside_objects: bprop("Fill", "OutsideObjects", name="Outside rigid bodies")
 
 
 class SoftsubCache(bpy.types.PropertyGroup):

@@ -32,6 +32,7 @@ FLUID_PARAMS = [t for t in schema.tags("Fluid") if t not in ("Name", "NumberOfPa
 OBJECT_OPTIONAL = ("Name", "Geometry", "Shape", "Size", "ParticleSize")
 OBJECT_PARAMS = [t for t in schema.tags("Object") if t not in OBJECT_OPTIONAL]
 FILL_TAGS = {"box": ["Min", "Max"], "sphere": ["Center", "Radius"], "mesh": ["Geometry", "Surface"]}
+FILL_COMMON = [t for t in schema.tags("Fill") if t != "Shape"]  # Spacing, OutsideObjects
 FLUID_NAME = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
@@ -182,10 +183,10 @@ def read_scene_text(text, name="scene"):
             if shape not in FILL_TAGS:
                 raise SceneError(f"{_where(fill_path)}/Shape: '{shape}' (allowed: box, sphere, mesh)")
             sec = f"Fill.{shape}"
-            kids_f = _children(fill_e, fill_path, ["Shape", "Spacing"] + FILL_TAGS[shape])
+            kids_f = _children(fill_e, fill_path, ["Shape"] + FILL_COMMON + FILL_TAGS[shape])
             fill = {"Shape": shape}
-            fill["Spacing"] = _value("Fill", "Spacing", kids_f["Spacing"], fill_path) if "Spacing" in kids_f \
-                else schema.default("Fill", "Spacing")
+            for t in FILL_COMMON:
+                fill[t] = _value("Fill", t, kids_f[t], fill_path) if t in kids_f else schema.default("Fill", t)
             for t in FILL_TAGS[shape]:
                 fill[t] = _value(sec, t, kids_f[t], fill_path) if t in kids_f else schema.default(sec, t)
             if shape == "mesh" and not fill["Geometry"]:
@@ -291,6 +292,8 @@ def write_scene_text(scene, num=schema.format_number, comment=None):
                 kind = schema.row(f"Fill.{shape}", t)[1]
                 out.append(f"      <{t}>{_xml_text(_fmt_value(kind, fill[t], num))}</{t}>")
             out.append(f"      <Spacing>{num(fill['Spacing'])}</Spacing>")
+            if fill.get("OutsideObjects"):  # written only when true, as softsub's writer does
+                out.append("      <OutsideObjects>true</OutsideObjects>")
             out.append("    </Fill>")
         out.append("  </Fluid>")
     for o in scene["objects"]:

@@ -92,6 +92,7 @@ class SOFTSUB_PT_object(SoftsubPanel, bpy.types.Panel):
             lay.prop(f, "spacing")
             if f.shape == "MESH":
                 lay.prop(f, "surface")
+            lay.prop(f, "outside_objects")
         elif o.softsub_cache.kind == "NONE":
             lay.label(text="Not part of the simulation")
 

@@ -282,7 +282,57 @@ double objectParticleSize(const ObjectDesc& o, const geometry::TriangleMesh& mes
   return extent * o.uniformScale / 20.0;
 }
 
-void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
+// One object's geometry, worked out before the fluids are placed (ObjectShapes).
+struct ObjectShapes::Prepared {
+  geometry::TriangleMesh mesh;  // objectMesh: in the geometry's own axes, unscaled
+  double spacing = 0;           // particle diameter
+  Mass mass;
+  std::vector<Vec3> points;  // the body's particles, in scaled geometry coordinates
+  std::vector<geometry::SurfaceFaces> faces;
+  rigid::BodyState state;            // the initial pose and motion
+  std::optional<PlacedSolid> solid;  // a closed mesh's volume fill at the initial pose
+};
+
+ObjectShapes::ObjectShapes(const SceneDesc& desc) {
+  objects_.reserve(desc.objects.size());
+  for (const ObjectDesc& od : desc.objects) {
+    Prepared& p = objects_.emplace_back();
+    p.mesh = objectMesh(od, desc.baseDir);
+    const geometry::TriangleMesh scaled = scaledMesh(p.mesh, od.uniformScale);
+    p.spacing = objectParticleSize(od, p.mesh);
+    p.mass = massOf(od, scaled);
+    const bool closed = isClosed(scaled);
+    std::vector<Vec3> solid;
+    p.points = bodyParticles(scaled, closed, p.spacing, p.mass.center, solid);
+    // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
+    // particle inside a face, the next layer more than a particle.
+    p.faces = geometry::surfaceFaces(scaled, p.points, 0.8 * p.spacing, kFlatDegrees, closed);
+    rigid::BodyState& st = p.state;
+    st.orientation = rigid::rotationFromEulerDegrees(od.initialRotation);
+    st.position = od.initialPosition + st.orientation * p.mass.center;
+    if (od.isDynamic) {
+      st.velocity = od.initialLinearVelocity;
+      const Vec3 omega = od.initialAngularVelocity * (std::numbers::pi / 180.0);
+      const Mat3 r = st.orientation.toRotationMatrix();
+      st.angularMomentum = r * p.mass.inertia * r.transpose() * omega;
+    }
+    if (!solid.empty()) {
+      const Aabb box = scaled.bounds();
+      p.solid.emplace(solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), p.spacing, od.initialPosition,
+                      st.orientation);
+    }
+  }
+}
+
+ObjectShapes::~ObjectShapes() = default;
+ObjectShapes::ObjectShapes(ObjectShapes&&) noexcept = default;
+
+bool ObjectShapes::inside(const Vec3& p) const {
+  return std::any_of(objects_.begin(), objects_.end(),
+                     [&](const Prepared& o) { return o.solid && o.solid->depth(p) > 0; });
+}
+
+void addBodies(const SceneDesc& desc, ObjectShapes&& shapes, solver::Model& m, solver::State& state,
                std::vector<geometry::TriangleMesh>& meshes, std::vector<std::string>* warnings) {
   if (desc.objects.empty()) return;
   rigid::BodySet& set = m.bodies;
@@ -321,34 +371,25 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
   for (std::size_t r = 0; r < rowKeys.size(); ++r) m.materials.push_back({0.0f, 0.0f, true});
 
   ParticleStore& store = state.particles;
-  std::vector<std::optional<PlacedSolid>> solids;  // per object, with warnings: its placed volume fill
+  std::vector<std::optional<PlacedSolid>> solids;  // per object: its placed volume fill
+  solids.reserve(desc.objects.size());
   for (std::size_t o = 0; o < desc.objects.size(); ++o) {
     const ObjectDesc& od = desc.objects[o];
-    geometry::TriangleMesh mesh = objectMesh(od, desc.baseDir);
-    const geometry::TriangleMesh scaled = scaledMesh(mesh, od.uniformScale);
-    meshes.push_back(std::move(mesh));
-    const double spacing = objectParticleSize(od, meshes.back());
-    const Mass mass = massOf(od, scaled);
-    const bool closed = isClosed(scaled);
-    std::vector<Vec3> solid;
-    const std::vector<Vec3> points = bodyParticles(scaled, closed, spacing, mass.center, solid);
-    // 0.8 particles: the outer lattice layer lies a quarter to three quarters of a
-    // particle inside a face, the next layer more than a particle.
-    const std::vector<geometry::SurfaceFaces> faces =
-        geometry::surfaceFaces(scaled, points, 0.8 * spacing, kFlatDegrees, closed);
+    ObjectShapes::Prepared& p = shapes.objects_[o];
+    meshes.push_back(std::move(p.mesh));
 
     rigid::BodyInfo info;
     info.name = od.name;
     info.dynamic = od.isDynamic;
     info.mass = od.mass;
     info.inverseMass = od.isDynamic ? 1.0 / od.mass : 0.0;
-    info.inverseInertia = od.isDynamic ? Mat3(boundedInertia(mass.inertia).inverse()) : Mat3::Zero();
+    info.inverseInertia = od.isDynamic ? Mat3(boundedInertia(p.mass.inertia).inverse()) : Mat3::Zero();
     info.restitution = od.normalAttenuation;
     info.friction = od.tangentAttenuation;
-    info.particleRadius = 0.5 * spacing;
+    info.particleRadius = 0.5 * p.spacing;
     info.firstId = static_cast<std::uint32_t>(store.size());
-    info.count = static_cast<std::uint32_t>(points.size());
-    info.originInBody = -mass.center;
+    info.count = static_cast<std::uint32_t>(p.points.size());
+    info.originInBody = -p.mass.center;
     info.uniformScale = od.uniformScale;
     info.geometryFile = od.name + ".obj";
 
@@ -356,54 +397,40 @@ void addBodies(const SceneDesc& desc, solver::Model& m, solver::State& state,
     m.materials[row].radius = std::max(m.materials[row].radius, static_cast<float>(info.particleRadius));
     const auto material = static_cast<std::uint16_t>(row);
     const auto owner = static_cast<std::uint32_t>(nf + o);
-    store.reserve(store.size() + points.size());
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const Vec3 off = points[k] - mass.center;
+    store.reserve(store.size() + p.points.size());
+    for (std::size_t k = 0; k < p.points.size(); ++k) {
+      const Vec3 off = p.points[k] - p.mass.center;
       info.farthest = std::max(info.farthest, off.norm());
       set.ox.push_back(static_cast<float>(off.x()));
       set.oy.push_back(static_cast<float>(off.y()));
       set.oz.push_back(static_cast<float>(off.z()));
       rigid::BodyFaces f;
-      f.count = faces[k].count;
-      for (int g = 0; g < faces[k].count; ++g) {
-        for (int c = 0; c < 3; ++c) f.normal[g][c] = static_cast<float>(faces[k].normal[g][c]);
-        f.sides[g] = faces[k].sides[g];
+      f.count = p.faces[k].count;
+      for (int g = 0; g < p.faces[k].count; ++g) {
+        for (int c = 0; c < 3; ++c) f.normal[g][c] = static_cast<float>(p.faces[k].normal[g][c]);
+        f.sides[g] = p.faces[k].sides[g];
       }
       set.faces.push_back(f);
       store.add(0, 0, 0, 0, 0, 0, material, owner);  // placed from the body's state
     }
-
-    rigid::BodyState st;
-    st.orientation = rigid::rotationFromEulerDegrees(od.initialRotation);
-    st.position = od.initialPosition + st.orientation * mass.center;
-    if (od.isDynamic) {
-      st.velocity = od.initialLinearVelocity;
-      const Vec3 omega = od.initialAngularVelocity * (std::numbers::pi / 180.0);
-      const Mat3 r = st.orientation.toRotationMatrix();
-      st.angularMomentum = r * mass.inertia * r.transpose() * omega;
-    }
-    if (warnings != nullptr) {
-      const Aabb box = scaled.bounds();
-      const PlacedSolid& placed =
-          solids
-              .emplace_back(std::in_place, solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), spacing,
-                            od.initialPosition, st.orientation)
-              .value();
+    solids.push_back(std::move(p.solid));
+    if (warnings != nullptr && solids.back()) {
       // The fluid particles (the slots before the bodies') in the fill, per fluid.
       std::vector<std::size_t> inside(nf, 0);
       for (std::size_t i = 0; i < set.firstId; ++i)
-        if (placed.depth(Vec3(store.px[i], store.py[i], store.pz[i])) > 0) ++inside[store.material[i]];
+        if (solids.back()->depth(Vec3(store.px[i], store.py[i], store.pz[i])) > 0)
+          ++inside[store.material[i]];
       for (std::size_t f = 0; f < nf; ++f)
         if (inside[f] > 0)
           warnings->push_back(fmt::format(
               "Object '{}' (line {}): {} particle(s) of fluid '{}' start inside it: a body is hollow behind "
-              "its "
-              "two outer layers of particles, so fluid inside it stays there; move the fill or the object so "
-              "that they do not overlap",
+              "its two outer layers of particles, so fluid inside it stays there; give the fluid's fills "
+              "<OutsideObjects>true</OutsideObjects> to leave out their points inside objects, or move the "
+              "fill or the object so that they do not overlap",
               od.name, od.line, inside[f], desc.fluids[f].name));
     }
     set.bodies.push_back(std::move(info));
-    state.bodies.push_back(st);
+    state.bodies.push_back(p.state);
   }
   if (warnings != nullptr) warnOverlappingBodies(desc, set, state.bodies, solids, *warnings);
 }

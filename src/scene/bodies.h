@@ -24,13 +24,39 @@ namespace softsub::scene {
 [[nodiscard]] const PairDesc* findPair(const InteractionsDesc& interactions, const std::string& a,
                                        const std::string& b);
 
+/// Every object's geometry, worked out before anything is placed: its mesh, its particles
+/// and initial state, and for a closed mesh its volume fill at the initial pose, which
+/// fills with OutsideObjects ask of (inside()) before the fluids are placed.
+class ObjectShapes {
+ public:
+  /// Loads and fills every object of `desc` (throws InputError as objectMesh does).
+  explicit ObjectShapes(const SceneDesc& desc);
+  ~ObjectShapes();
+  ObjectShapes(ObjectShapes&&) noexcept;
+  ObjectShapes(const ObjectShapes&) = delete;
+  ObjectShapes& operator=(const ObjectShapes&) = delete;
+  ObjectShapes& operator=(ObjectShapes&&) = delete;
+
+  /// Whether p lies in a closed object's volume at its initial pose: in one of the voxels
+  /// (the object's particle size) of its volume fill, which reach about half a voxel
+  /// past its surface. Open meshes have no inside.
+  [[nodiscard]] bool inside(const Vec3& p) const;
+
+ private:
+  struct Prepared;
+  std::vector<Prepared> objects_;
+  friend void addBodies(const SceneDesc&, ObjectShapes&&, solver::Model&, solver::State&,
+                        std::vector<geometry::TriangleMesh>&, std::vector<std::string>*);
+};
+
 /// Appends every object of `desc` as a rigid body to the model (after the fluids:
-/// materials, interaction rows with every fluid) and its particles and state to `state`.
-/// `meshes` receives each object's objectMesh, in scene order. `warnings` (if given)
-/// receives one sentence for each fluid with particles that start inside a closed
-/// object's volume: a body keeps only its two outer layers of particles, so nothing
-/// pushes fluid out of its hollow middle.
-void addBodies(const SceneDesc& desc, solver::Model& model, solver::State& state,
+/// materials, interaction rows with every fluid) and its particles and state to `state`,
+/// from `shapes` (built from the same `desc`). `meshes` receives each object's
+/// objectMesh, in scene order. `warnings` (if given) receives one sentence for each
+/// fluid with particles that start inside a closed object's volume (a body keeps only
+/// its two outer layers of particles, so nothing pushes fluid out of its hollow middle)
+/// and for each pair of objects that start inside each other.
+void addBodies(const SceneDesc& desc, ObjectShapes&& shapes, solver::Model& model, solver::State& state,
                std::vector<geometry::TriangleMesh>& meshes, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace softsub::scene

@@ -236,6 +236,33 @@ std::vector<std::string> defaultInteractionWarnings(const SceneDesc& d, const so
   return out;
 }
 
+// Appends the points of fluid fd's fill k to `points`.
+void fillPoints(const SceneDesc& desc, const FluidDesc& fd, std::size_t k, std::vector<Vec3>& points) {
+  const FillDesc& fill = fd.fills[k];
+  if (fill.shape != FillShape::Mesh) {
+    generateFill(fill, points);
+    return;
+  }
+  // The reader checked the path, the mesh and its bound against the particle cap; the
+  // loader's and the fill's warnings (repairs, open meshes) are not shown here.
+  const geometry::TriangleMesh mesh = geometry::loadMesh(
+      std::filesystem::path(desc.baseDir) / fill.geometry, nullptr,
+      desc.baseDir.empty() ? std::filesystem::path(".") : std::filesystem::path(desc.baseDir));
+  const geometry::MeshFillResult r =
+      geometry::fillMesh(mesh, {.spacing = fill.spacing,
+                                .surfaceOnly = fill.surface,
+                                .maxParticles = geometry::meshFillBound(mesh, fill.spacing)});
+  // As a box or sphere fill that makes nothing is refused when the scene is read (a mesh
+  // fill's count is known only now, from the fill itself).
+  if (r.points.empty())
+    throw InputError(
+        {desc.file, fill.line, fmt::format("Fluid '{}'/Fill[{}]", fd.name, k + 1)},
+        fmt::format("the mesh fill of '{}' makes no particles at Spacing {:g}", fill.geometry, fill.spacing),
+        "a Spacing smaller than the mesh's thickness, or <Surface>true</Surface> for a thin or "
+        "open mesh");
+  points.insert(points.end(), r.points.begin(), r.points.end());
+}
+
 }  // namespace
 
 Compiled compile(const SceneDesc& desc) {
@@ -276,6 +303,9 @@ Compiled compile(const SceneDesc& desc) {
     }
   }
 
+  // The objects' geometry first: fills with OutsideObjects leave out what lies inside them.
+  ObjectShapes shapes(desc);
+  std::vector<std::string> carved;  // warnings about fills left empty by OutsideObjects
   ParticleStore& store = out.state.particles;
   std::vector<Vec3> points;
   std::uint32_t nextId = 0;
@@ -284,30 +314,24 @@ Compiled compile(const SceneDesc& desc) {
     points.assign(fd.particles.begin(), fd.particles.end());
     for (std::size_t k = 0; k < fd.fills.size(); ++k) {
       const FillDesc& fill = fd.fills[k];
-      if (fill.shape != FillShape::Mesh) {
-        generateFill(fill, points);
-        continue;
-      }
-      // The reader checked the path, the mesh and its bound against the particle cap;
-      // the loader's and the fill's warnings (repairs, open meshes) are not shown here.
-      const geometry::TriangleMesh mesh =
-          geometry::loadMesh(std::filesystem::path(desc.baseDir) / fill.geometry, nullptr,
-                             desc.baseDir.empty() ? std::filesystem::path(".") : std::filesystem::path(desc.baseDir));
-      const geometry::MeshFillResult r = geometry::fillMesh(
-          mesh, {.spacing = fill.spacing,
-                 .surfaceOnly = fill.surface,
-                 .maxParticles = geometry::meshFillBound(mesh, fill.spacing)});
-      // As a box or sphere fill that makes nothing is refused when the scene is read (a
-      // mesh fill's count is known only now, from the fill itself).
-      if (r.points.empty())
-        throw InputError(
-            {desc.file, fill.line, fmt::format("Fluid '{}'/Fill[{}]", fd.name, k + 1)},
-            fmt::format("the mesh fill of '{}' makes no particles at Spacing {:g}", fill.geometry,
-                        fill.spacing),
-            "a Spacing smaller than the mesh's thickness, or <Surface>true</Surface> for a thin or "
-            "open mesh");
-      points.insert(points.end(), r.points.begin(), r.points.end());
+      const std::size_t from = points.size();
+      fillPoints(desc, fd, k, points);
+      if (!fill.outsideObjects) continue;
+      const auto kept = std::remove_if(points.begin() + static_cast<std::ptrdiff_t>(from), points.end(),
+                                       [&](const Vec3& p) { return shapes.inside(p); });
+      const auto left = static_cast<std::size_t>(kept - points.begin()) - from;
+      if (left == 0)
+        carved.push_back(
+            fmt::format("Fluid '{}'/Fill[{}] (line {}): all {} of its points lie inside objects "
+                        "(OutsideObjects true), so it adds no particles",
+                        fd.name, k + 1, fill.line, points.size() - from));
+      points.erase(kept, points.end());
     }
+    if (points.empty())
+      throw InputError({desc.file, fd.line, fmt::format("Fluid '{}'", fd.name)},
+                       "every point of the fluid's fills lies inside an object (OutsideObjects true), so it "
+                       "has no particles",
+                       "fills that reach outside the objects, or OutsideObjects false");
     solver::FluidInfo info;
     info.name = fd.name;
     info.colour = {static_cast<float>(fd.colour.x()), static_cast<float>(fd.colour.y()),
@@ -327,9 +351,10 @@ Compiled compile(const SceneDesc& desc) {
     nextId += info.count;
   }
   std::vector<std::string> inside;
-  addBodies(desc, m, out.state, out.objectMeshes, &inside);
+  addBodies(desc, std::move(shapes), m, out.state, out.objectMeshes, &inside);
   out.warnings = initialStateWarnings(m, store, out.state);
   for (std::string& w : inside) out.warnings.push_back(std::move(w));
+  for (std::string& w : carved) out.warnings.push_back(std::move(w));
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
   for (std::string& w : staticObjectWarnings(desc)) out.warnings.push_back(std::move(w));
   return out;

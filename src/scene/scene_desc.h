@@ -58,11 +58,14 @@ struct FillDesc {
   std::string geometry;  ///< mesh: file as written, relative to SceneDesc::baseDir
   bool surface = false;  ///< mesh: sample the surface only (thin shells, open meshes)
   double spacing = 1;    ///< lattice step, > 0
-  int line = 0;          ///< source line (for messages); not compared
+  /// Extension: leave out the points that lie inside a closed object at its initial pose
+  /// (scene::ObjectShapes::inside), so that fluid can be filled around objects.
+  bool outsideObjects = false;
+  int line = 0;  ///< source line (for messages); not compared
   bool operator==(const FillDesc& o) const {
-    return shape == o.shape && min == o.min && max == o.max && center == o.center &&
-           radius == o.radius && geometry == o.geometry && surface == o.surface &&
-           spacing == o.spacing;
+    return shape == o.shape && min == o.min && max == o.max && center == o.center && radius == o.radius &&
+           geometry == o.geometry && surface == o.surface && spacing == o.spacing &&
+           outsideObjects == o.outsideObjects;
   }
 };
 

@@ -151,13 +151,26 @@ constexpr Field<FluidDesc> kFluid[] = {
 };
 
 constexpr Field<FillDesc> kFillCommon[] = {
-    field<&FillDesc::shape>({.tag = "Shape", .kind = Kind::Enum, .unit = "-",
+    field<&FillDesc::shape>({.tag = "Shape",
+                             .kind = Kind::Enum,
+                             .unit = "-",
                              .meaning = "what the lattice fills",
                              .rule = "mesh needs Geometry and Spacing",
-                             .choices = kFillShapeNames, .required = true}),
-    field<&FillDesc::spacing>({.tag = "Spacing", .kind = Kind::Real, .unit = "units",
+                             .choices = kFillShapeNames,
+                             .required = true}),
+    field<&FillDesc::spacing>({.tag = "Spacing",
+                               .kind = Kind::Real,
+                               .unit = "units",
                                .range = kPositive,
                                .meaning = "distance between neighbouring lattice points"}),
+    // Written only when true (defaultText), so scenes written before it come back unchanged.
+    field<&FillDesc::outsideObjects>({.tag = "OutsideObjects",
+                                      .kind = Kind::Bool,
+                                      .unit = "-",
+                                      .meaning = "extension: leave out the points inside a closed "
+                                                 "object at its initial pose (fluid filled around "
+                                                 "objects)",
+                                      .defaultText = "`false`"}),
 };
 
 constexpr Field<FillDesc> kFillBox[] = {

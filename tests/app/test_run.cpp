@@ -103,7 +103,7 @@ INSTANTIATE_TEST_SUITE_P(App, Examples,
                          ::testing::Values("softsub-demo.scene", "honey-drop.scene", "two-fluids.scene",
                                            "jelly-block.scene", "goo-torus.scene", "interactions.scene",
                                            "viscous-posts.scene", "wall-impact.scene", "box-on-jelly.scene",
-                                           "crate-stack.scene"),
+                                           "crate-stack.scene", "crate-in-pool.scene"),
                          exampleTestName);
 
 TEST(Run, EveryExampleIsCovered) {

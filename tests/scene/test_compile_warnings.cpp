@@ -162,6 +162,99 @@ TEST(CompileWarnings, CountsTheFluidParticlesThatStartInsideAnObject) {
                   .empty());
 }
 
+// A fill with OutsideObjects leaves out its points inside closed objects, at the objects'
+// initial poses: the same box as above, turned 0, 30 and 45 degrees, and a second object
+// (a ball) inside the same fill. Each point the fill keeps is outside both, each point it
+// drops inside one (brute force, in each object's own axes; no point lies within 1e-3 of
+// the crate's faces, which its voxels match, or within 0.3 of the ball's surface), the rest of the fluid
+// (explicit positions, a fill without the tag) keeps every point, and only what they keep inside the crate is
+// said to start inside it.
+TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
+  const Vec3 centre(0.25, 2.25, 0.1), ball(-2, 2, 2);
+  const double radius = 1.3;
+  const auto carvedFill = [](const std::string& min, const std::string& max) {
+    return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max +
+           "</Max><Spacing>1</Spacing><OutsideObjects>true</OutsideObjects></Fill>";
+  };
+  for (const double turn : {0.0, 30.0, 45.0}) {
+    SCOPED_TRACE(turn);
+    const std::string text = sceneWith(
+        "<Fluid><Name>goo</Name><Particles>0.25 2.25 0.1</Particles>" + carvedFill("-4 0 -4", "4 4 4") +
+        fill("-1 1 -1", "1 3 1") + "</Fluid>\n" +
+        fmt::format(
+            "<Object><Name>crate</Name><Shape>box</Shape><Size>3 3 3</Size>"
+            "<ParticleSize>0.5</ParticleSize><InitialPosition>{} {} {}</InitialPosition>"
+            "<InitialRotation>0 {} 0</InitialRotation></Object>\n"
+            "<Object><Name>ball</Name><Shape>sphere</Shape><Size>{}</Size><ParticleSize>0.25</ParticleSize>"
+            "<InitialPosition>{} {} {}</InitialPosition><IsDynamic>false</IsDynamic></Object>",
+            centre.x(), centre.y(), centre.z(), turn, radius, ball.x(), ball.y(), ball.z()));
+    const Compiled c = compile(readSceneText(text, "t.scene"));
+    const double co = std::cos(turn * std::numbers::pi / 180), si = std::sin(turn * std::numbers::pi / 180);
+    const auto inCrate = [&](const Vec3& p) {
+      const Vec3 d = p - centre;
+      const Vec3 own(co * d.x() - si * d.z(), d.y(), si * d.x() + co * d.z());  // turned back about y
+      EXPECT_GT(std::abs(own.cwiseAbs().maxCoeff() - 1.5), 1e-3) << "a point on a face";
+      return own.cwiseAbs().maxCoeff() < 1.5;
+    };
+    const auto inBall = [&](const Vec3& p) {
+      // The ball's voxels (0.25) reach up to 0.22 past its surface.
+      EXPECT_GT(std::abs((p - ball).norm() - radius), 0.3) << "a point near the sphere";
+      return (p - ball).norm() < radius;
+    };
+    std::vector<Vec3> expected = {centre};  // the explicit position, inside the crate, kept
+    int dropped = 0;
+    for (double z = -3.5; z < 4; ++z)
+      for (double y = 0.5; y < 4; ++y)
+        for (double x = -3.5; x < 4; ++x) {
+          if (inCrate({x, y, z}) || inBall({x, y, z})) ++dropped;
+          else expected.emplace_back(x, y, z);
+        }
+    for (double z = -0.5; z < 1; ++z)
+      for (double y = 1.5; y < 3; ++y)
+        for (double x = -0.5; x < 1; ++x) expected.emplace_back(x, y, z);  // the plain fill, kept
+    ASSERT_GT(dropped, 27);
+    const ParticleStore& s = c.state.particles;
+    ASSERT_EQ(c.model.fluids.at(0).count, expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      ASSERT_EQ(Vec3(s.px[i], s.py[i], s.pz[i]), expected[i].cast<float>().cast<double>()) << i;
+    // The points kept inside the crate, the explicit one and the plain fill's, are the only
+    // fluid said to start inside an object.
+    const auto keptInCrate = std::count_if(expected.begin(), expected.end(), inCrate);
+    ASSERT_EQ(keptInCrate, 9);
+    ASSERT_EQ(c.warnings.size(), 1u) << fmt::format("{}", fmt::join(c.warnings, "\n"));
+    EXPECT_NE(c.warnings[0].find("Object 'crate' (line 3): 9 particle(s) of fluid 'goo' start inside it"),
+              std::string::npos)
+        << c.warnings[0];
+  }
+}
+
+// A fill whose every point lies inside an object adds nothing: a warning names it, and a
+// fluid left with no particle at all is an error at its line.
+TEST(CompileFills, AFillLeftEmptyByOutsideObjectsIsNamed) {
+  const std::string crate =
+      "<Object><Name>crate</Name><Shape>box</Shape><Size>4 4 4</Size><InitialPosition>0 2 0</InitialPosition>"
+      "</Object>";
+  const std::string inner =
+      "<Fill><Shape>box</Shape><Min>-1 1 -1</Min><Max>1 3 1</Max><Spacing>1</Spacing>"
+      "<OutsideObjects>true</OutsideObjects></Fill>";
+  const std::vector<std::string> w =
+      warningsOf("<Fluid><Name>goo</Name>" + fill("6 0 6", "7 1 7") + inner + "</Fluid>\n" + crate);
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(w[0].find("Fluid 'goo'/Fill[2] (line 2): all 8 of its points lie inside objects"),
+            std::string::npos)
+      << w[0];
+  try {
+    (void)compile(
+        readSceneText(sceneWith("<Fluid><Name>goo</Name>" + inner + "</Fluid>\n" + crate), "t.scene"));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.scene:2: Fluid 'goo': "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("every point of the fluid's fills lies inside an object"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Objects that start inside each other: the particles of one that lie more than about
 // half a particle inside another's closed volume, per pair where one of the two moves. A
 // crate inside a hollow box (all its particles), one sunk half into it, and one turned

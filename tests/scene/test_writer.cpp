@@ -58,6 +58,7 @@ TEST(Writer, RoundTripsAHandMadeScene) {
   slab.min = {-1, 0, -1};
   slab.max = {1, 0.25, 1};
   slab.spacing = 0.125;
+  slab.outsideObjects = true;
   oil.fills = {ball, slab};
   d.fluids = {honey, oil};
   d.interactions.fluidFluid = {forces::LennardJones{2, 0.9, -3, 30, 1.8}, 0.5, 0.25};
@@ -133,6 +134,7 @@ TEST(Writer, WritesEveryTagWithDefaultsAndNicelyIndented) {
   f.particles = {{1, 2, 3}, {4, 5, 6}};
   FillDesc ball;
   ball.shape = FillShape::Sphere;
+  ball.outsideObjects = true;  // written only when true
   f.fills.push_back(ball);
   d.fluids = {f, fluidWithBox("v"), fluidWithBox("u")};
   d.interactions.pairs = {{"w", "v", {forces::LennardJones{}, 0, 0}},
@@ -315,6 +317,7 @@ class RandomScenes {
     FillDesc f;
     f.shape = coin() ? FillShape::Box : FillShape::Sphere;
     f.spacing = uniform(0.05, 2);
+    f.outsideObjects = coin();
     if (f.shape == FillShape::Box) {
       f.min = Vec3(uniform(-50, 50), uniform(-50, 50), uniform(-50, 50));
       for (int a = 0; a < 3; ++a) f.max[a] = f.min[a] + f.spacing * uniform(1.01, 8);
