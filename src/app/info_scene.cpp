@@ -76,9 +76,12 @@ void printSceneInfo(const std::string& path) {
              groupThousands(compiled.model.particleCount() - bodyParticles));
   for (std::size_t f = 0; f < d.fluids.size(); ++f) {
     const scene::FluidDesc& fluid = d.fluids[f];
-    fmt::print("  {}: {} particles ({} explicit, {} fills), bounds {}\n", fluid.name,
-               groupThousands(compiled.model.fluids[f].count), fluid.particles.size(), fluid.fills.size(),
-               describeBox(boxes[f]));
+    const std::size_t leftOut = compiled.leftOutInsideObjects.empty() ? 0 : compiled.leftOutInsideObjects[f];
+    fmt::print(
+        "  {}: {} particles ({} explicit, {} fills{}), bounds {}\n", fluid.name,
+        groupThousands(compiled.model.fluids[f].count), fluid.particles.size(), fluid.fills.size(),
+        leftOut > 0 ? fmt::format("; {} fill points inside objects left out", groupThousands(leftOut)) : "",
+        describeBox(boxes[f]));
     fmt::print("    {}\n", describeFields(fluid, {"Name", "NumberOfParticles"}));
   }
 

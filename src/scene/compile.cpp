@@ -306,6 +306,7 @@ Compiled compile(const SceneDesc& desc) {
   // The objects' geometry first: fills with OutsideObjects leave out what lies inside them.
   ObjectShapes shapes(desc);
   std::vector<std::string> carved;  // warnings about fills left empty by OutsideObjects
+  out.leftOutInsideObjects.assign(nf, 0);
   ParticleStore& store = out.state.particles;
   std::vector<Vec3> points;
   std::uint32_t nextId = 0;
@@ -325,6 +326,7 @@ Compiled compile(const SceneDesc& desc) {
             fmt::format("Fluid '{}'/Fill[{}] (line {}): all {} of its points lie inside objects "
                         "(OutsideObjects true), so it adds no particles",
                         fd.name, k + 1, fill.line, points.size() - from));
+      out.leftOutInsideObjects[f] += static_cast<std::size_t>(points.end() - kept);
       points.erase(kept, points.end());
     }
     if (points.empty())

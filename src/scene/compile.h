@@ -22,6 +22,9 @@ struct Compiled {
   /// a static object stays where it is), and fluid particles at exactly the same place
   /// as another (a pair at distance 0 has no direction: they never push apart).
   std::vector<std::string> warnings;
+  /// Per fluid: the points of its fills with OutsideObjects left out because they lie
+  /// inside an object (`softsub info` shows them).
+  std::vector<std::size_t> leftOutInsideObjects;
 };
 
 /// Builds the model (materials, interaction table, container, options) and the initial

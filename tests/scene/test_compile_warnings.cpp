@@ -215,6 +215,7 @@ TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
     ASSERT_GT(dropped, 27);
     const ParticleStore& s = c.state.particles;
     ASSERT_EQ(c.model.fluids.at(0).count, expected.size());
+    EXPECT_EQ(c.leftOutInsideObjects, std::vector<std::size_t>{static_cast<std::size_t>(dropped)});
     for (std::size_t i = 0; i < expected.size(); ++i)
       ASSERT_EQ(Vec3(s.px[i], s.py[i], s.pz[i]), expected[i].cast<float>().cast<double>()) << i;
     // The points kept inside the crate, the explicit one and the plain fill's, are the only
