@@ -164,6 +164,13 @@ Simulation::Simulation(const Model& model, State state) : model_(model), state_(
     const Container& box = *model_.container;
     for (const MaterialInfo& m : model_.materials) {
       std::array<float, 3> lo{}, hi{};
+      if (m.body) {  // bodies meet the walls in the rigid solver, their particles never
+        lo.fill(-INFINITY);
+        hi.fill(INFINITY);
+        wallLo_.push_back(lo);
+        wallHi_.push_back(hi);
+        continue;
+      }
       for (int a = 0; a < 3; ++a) {
         lo[a] = static_cast<float>(box.lo[a]) + m.radius;
         hi[a] = static_cast<float>(box.hi[a]) - m.radius;
@@ -616,8 +623,11 @@ void Simulation::step() {
         kick(dt);
         drift(dt);  // with v_{n+1}
       }
-      applyWalls();
+      // The walls last: the bodies' step corrects the fluid's explicit drag by a change
+      // of velocity (RigidSolver::dragFluid), which a wall's bounce in between turned
+      // into a fling.
       stepBodies(this->dt());
+      applyWalls();
       break;
     }
     case Integrator::VelocityVerlet: {
@@ -635,8 +645,8 @@ void Simulation::step() {
         prepareBodies();  // where the forces were evaluated
         kick(opening);
         drift(dt);
-        applyWalls();
         stepBodies(this->dt());
+        applyWalls();  // last, as above
       }
       computeForces();
       kickOwed_ = !closes;
