@@ -75,6 +75,8 @@ int meshCommand(const MeshOptions& o) {
                "warning: no usable scene file at {}: every fluid is meshed at ParticleSize 1 (give the scene "
                "with --scene)\n",
                displayFile(playback.sceneFile().string()));
+  if (!o.quiet && !playback.unnamedFluids().empty())
+    fmt::print(stderr, "warning: {}\n", playback.unnamedFluids());
   const std::int64_t lastFrame = playback.frameNumbers().back();
   std::size_t particles = 0;
   std::optional<ProgressLine> progress;

@@ -236,6 +236,7 @@ int renderCommand(const RenderOptions& o) {
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input, o.quiet);
     if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
+    if (!rec.unnamedFluids().empty() && !o.quiet) fmt::print(stderr, "warning: {}\n", rec.unnamedFluids());
     if (chatty)
       for (const std::string& note : rec.notes()) fmt::print(stderr, "note: {}\n", note);
     const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);

@@ -30,6 +30,8 @@ class RecordedFrames {
   [[nodiscard]] FrameSnapshot load(std::size_t index) const;
   /// Why the scene file beside the folder was not used (it is invalid), or "".
   [[nodiscard]] const std::string& sceneNote() const;
+  /// session::Playback::unnamedFluids.
+  [[nodiscard]] const std::string& unnamedFluids() const;
   /// Which scene was taken, which frames were left out (session::Playback::notes).
   [[nodiscard]] const std::vector<std::string>& notes() const;
 

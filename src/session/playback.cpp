@@ -1,6 +1,7 @@
 #include "session/playback.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -185,6 +186,20 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
       probe = cache::readSimFile(frames_[1]).frame;
       if (probe.frame > 0 && probe.time > 0) fps_ = static_cast<double>(probe.frame) / probe.time;
     }
+  }
+  if (scene_) {
+    std::vector<std::string> missing, named;
+    for (const scene::FluidDesc& d : scene_->fluids) named.push_back(fmt::format("'{}'", d.name));
+    for (const FluidSnapshot& f : first.fluids)
+      if (std::none_of(scene_->fluids.begin(), scene_->fluids.end(),
+                       [&](const scene::FluidDesc& d) { return d.name == f.name; }))
+        missing.push_back(fmt::format("'{}'", f.name));
+    if (!missing.empty())
+      unnamedFluids_ = fmt::format(
+          "the scene file {} has no fluid {} of the recording (its fluids: {}): drawn and meshed with the "
+          "default colour and ParticleSize 1; give the scene the recording was made with (--scene)",
+          sceneFile_.generic_string(), fmt::join(missing, ", "),
+          named.empty() ? "none" : fmt::format("{}", fmt::join(named, ", ")));
   }
   for (const ObjectSnapshot& o : first.objects) {
     checkMeshName(o.filename, frames_.front());

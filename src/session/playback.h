@@ -58,6 +58,10 @@ class Playback {
   [[nodiscard]] const std::string& sceneNote() const { return sceneNote_; }
   /// The scene file looked for (beside the folder, or the one given).
   [[nodiscard]] const std::filesystem::path& sceneFile() const { return sceneFile_; }
+  /// With a scene used: one sentence naming the first frame's fluids the scene has no
+  /// `<Fluid>` of (renamed since the run, or another scene given), which are drawn and
+  /// meshed with the default colour and ParticleSize 1; "" when every fluid is named.
+  [[nodiscard]] const std::string& unnamedFluids() const { return unnamedFluids_; }
   /// Notes for a person: which scene was taken when the folder holds frames of several
   /// (and how to choose another), which frames were left out as an earlier run's (see
   /// the constructor).
@@ -75,6 +79,7 @@ class Playback {
   std::optional<scene::SceneDesc> scene_;
   std::string sceneNote_;
   std::filesystem::path sceneFile_;
+  std::string unnamedFluids_;
   std::vector<std::string> notes_;
   std::vector<cache::ObjectMesh> meshes_;
 };

@@ -316,7 +316,8 @@ TEST(SurfaceCli, MeshCommandOnARecordedFolderGivesTheSameBytes) {
 
 // A recorded folder away from its scene: without the sizes every fluid is meshed at
 // ParticleSize 1, which a warning says (also where stderr is not a terminal) naming the
-// file looked for; --scene gives the run's bytes back. A bad --scene is an error.
+// file looked for; --scene gives the run's bytes back. A bad --scene is an error, and one
+// without the recording's fluid is warned about.
 TEST(SurfaceCli, MeshAwayFromItsSceneWarnsAndTakesTheSceneFromAnOption) {
   TempDir tmp;
   // A particle size other than the default 1, so that the sizes show in the surfaces.
@@ -348,6 +349,22 @@ TEST(SurfaceCli, MeshAwayFromItsSceneWarnsAndTakesTheSceneFromAnOption) {
       runSoftsub("mesh --scene nope.scene " + quote(tmp / "elsewhere/take1"), tmp.path());
   EXPECT_NE(missing.code, 0);
   EXPECT_NE(missing.err.find("nope.scene"), std::string::npos) << missing.err;
+  // A scene that reads but has no fluid of the recording (renamed since the run): the
+  // same sizes as no scene, which a warning says, naming the fluids (a black-box review:
+  // silently 5.4 times the volume).
+  std::string renamed = text;
+  renamed.replace(renamed.find("<Name>honey</Name>"), 18, "<Name>syrup</Name>");
+  std::ofstream(tmp / "renamed.scene") << renamed;
+  const RunResult other = runSoftsub(
+      "mesh --scene " + quote(tmp / "renamed.scene") + " " + quote(tmp / "elsewhere/take1"), tmp.path());
+  ASSERT_EQ(other.code, 0) << other.err;
+  EXPECT_NE(
+      other.err.find("warning: the scene file " + (tmp / "renamed.scene").generic_string() +
+                     " has no fluid 'honey' of the recording (its fluids: 'syrup'): drawn and meshed with "
+                     "the default colour and ParticleSize 1"),
+      std::string::npos)
+      << other.err;
+  EXPECT_TRUE(readFile(tmp / "elsewhere/take1/mesh/honey.0001.obj") != runs) << "meshed at the scene's sizes";
 }
 
 // Surfaces are named after their fluid: meshing one scene of a shared folder would have
