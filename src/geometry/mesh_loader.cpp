@@ -135,8 +135,23 @@ class MeshBuilder {
           "turned {} triangle(s) wound against their neighbours (the winding most of their part of the "
           "mesh has was kept)",
           turned));
+    const MeshEdges edges = countEdges(mesh_);
+    // A closed mesh wound inward as a whole (authored so, or mirrored by hand): turned
+    // outward, so that what is written from it (an object's OBJ beside the frames) has
+    // its normals out. The whole mesh's volume decides, not each part's: a hollow mesh's
+    // cavity, wound inward, stays so.
+    if (edges.boundary == 0 && edges.nonManifold == 0) {
+      double volume6 = 0;  // six times the signed volume
+      for (const auto& t : mesh_.triangles)
+        volume6 += mesh_.vertices[t[0]].dot(mesh_.vertices[t[1]].cross(mesh_.vertices[t[2]]));
+      if (volume6 < 0) {
+        for (auto& t : mesh_.triangles) std::swap(t[1], t[2]);
+        if (report != nullptr)
+          report->warnings.push_back(
+              "the closed mesh's triangles all face inward (a negative volume): turned to face outward");
+      }
+    }
     if (report != nullptr) {
-      const MeshEdges edges = countEdges(mesh_);
       if (edges.nonManifold > 0)
         report->warnings.push_back(fmt::format(
             "{} edge(s) are shared by more than two triangles (non-manifold): kept; inside and outside "

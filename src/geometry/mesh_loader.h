@@ -63,7 +63,8 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// triangles' winding reversed so orientation is kept. Triangles wound against their
 /// neighbours are turned (orientConsistently), with a warning in `report`: a closed
 /// mesh with one flipped face is closed, and a body's volume and inertia need its
-/// faces to agree.
+/// faces to agree. A closed mesh whose whole volume is negative (wound inward) is turned
+/// outward, with a warning.
 ///
 /// Throws IoError when the file cannot be opened or read (message names the file and the
 /// reason); InputError {file, 0, "mesh"} when the file is larger than

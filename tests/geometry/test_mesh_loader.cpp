@@ -1,6 +1,9 @@
 // Loading meshes from files the test writes: the formats, node transforms, and every
 // kind of bad input the loader must refuse or repair.
+#include <cstdio>
 #include <gtest/gtest.h>
+#include <iterator>
+#include <sstream>
 #include <unistd.h>
 
 #include <atomic>
@@ -388,6 +391,58 @@ TEST(LoadMesh, EachPartKeepsTheWindingMostOfItHas) {
   const TriangleMesh before = strip;
   EXPECT_EQ(orientConsistently(strip), 0u);
   EXPECT_EQ(strip.triangles, before.triangles);
+}
+
+// A closed mesh wound inward as a whole (every face reversed) is turned outward with a
+// warning, so an object's OBJ written from it has its normals out (a black-box review:
+// written with volume -8). A hollow box, whose cavity is wound inward on purpose and
+// whose whole volume is positive, is kept as it is; so is an open mesh, which has no
+// inside.
+TEST(LoadMesh, AClosedMeshWoundInwardAsAWholeIsTurnedOutward) {
+  TempDir dir;
+  std::string inward;
+  std::istringstream lines(kCubeObj);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {  // the face's corners in reverse order
+      std::istringstream corners(line.substr(2));
+      std::vector<std::string> c{std::istream_iterator<std::string>(corners), {}};
+      line = "f";
+      for (auto k = c.rbegin(); k != c.rend(); ++k) line += " " + *k;
+    }
+    inward += line + "\n";
+  }
+  MeshLoadReport report;
+  const TriangleMesh m = loadMesh(dir.write("inward.obj", inward), &report);
+  EXPECT_NEAR(scenarios::signedVolume(m), 1.0, 1e-12);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("all face inward"), std::string::npos) << report.warnings[0];
+
+  // Two cubes, the inner one reversed (a cavity): volume 8 - 1.
+  std::string hollow =
+      "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nv 0 0 2\nv 2 0 2\nv 0 2 2\nv 2 2 2\n"
+      "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 1.5 1.5 0.5\n"
+      "v 0.5 0.5 1.5\nv 1.5 0.5 1.5\nv 0.5 1.5 1.5\nv 1.5 1.5 1.5\n";
+  for (const char* f : {"1 5 7 3", "2 4 8 6", "1 2 6 5", "3 7 8 4", "1 3 4 2", "5 6 8 7"}) {
+    int a, b, c, d;
+    ASSERT_EQ(std::sscanf(f, "%d %d %d %d", &a, &b, &c, &d), 4);
+    const auto face = [](int p, int q, int r, int t) {
+      return "f " + std::to_string(p) + " " + std::to_string(q) + " " + std::to_string(r) + " " +
+             std::to_string(t) + "\n";
+    };
+    hollow += face(a, b, c, d) + face(d + 8, c + 8, b + 8, a + 8);
+  }
+  MeshLoadReport kept;
+  EXPECT_NEAR(scenarios::signedVolume(loadMesh(dir.write("hollow.obj", hollow), &kept)), 7.0, 1e-12);
+  EXPECT_TRUE(kept.warnings.empty()) << kept.warnings.front();
+
+  // The inward cube without its top face: open, left as it is.
+  std::string open;
+  std::istringstream again(inward);
+  for (std::string line; std::getline(again, line);)
+    if (line.find("//4") == std::string::npos || line.rfind("f ", 0) != 0) open += line + "\n";
+  MeshLoadReport none;
+  EXPECT_LT(scenarios::signedVolume(loadMesh(dir.write("open.obj", open), &none)), 0.0);
+  for (const std::string& w : none.warnings) EXPECT_EQ(w.find("inward"), std::string::npos) << w;
 }
 
 TEST(LoadMesh, HugeFileIsRefusedBeforeReading) {
