@@ -80,14 +80,31 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
       const rigid::BodyState& pose = state.bodies[b];
       const Mat3 r = pose.orientation.toRotationMatrix();
       std::size_t count = 0;
+      Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
       for (std::uint32_t k = info.firstId - set.firstId; k < info.firstId - set.firstId + info.count; ++k) {
         const Vec3 p = pose.position + r * Vec3(set.ox[k], set.oy[k], set.oz[k]);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
         count += p.x() < c.lo[0] || p.x() > c.hi[0] || p.y() < c.lo[1] || (c.closed && p.y() > c.hi[1]) ||
                          p.z() < c.lo[2] || p.z() > c.hi[2]
                      ? 1
                      : 0;
       }
-      if (count > 0)
+      // A body wider than the container on some axis cannot be put inside by the walls
+      // (a mesh in millimetres in a scene in centimetres was flung 120 units in a frame).
+      int wider = -1;
+      for (int a = 0; a < 3 && wider < 0; ++a)
+        if ((a != 1 || c.closed) && hi[a] - lo[a] + 2 * info.particleRadius > c.hi[a] - c.lo[a]) wider = a;
+      if (count > 0 && wider >= 0)
+        out.push_back(
+            fmt::format("Object '{}': it is {:g} across in {}, wider than the container ({:g}); {} (a mesh "
+                        "in other units? "
+                        "UniformScale scales it)",
+                        info.name, hi[wider] - lo[wider] + 2 * info.particleRadius, "xyz"[wider],
+                        c.hi[wider] - c.lo[wider],
+                        info.dynamic ? "the walls cannot hold it, and fling it"
+                                     : "the fluids cannot reach the part outside"));
+      else if (count > 0)
         out.push_back(fmt::format(
             "Object '{}': {} of {} particles start outside the container ({}); {}", info.name, count, info.count, box,
             info.dynamic ? "the walls push the body back inside over the first substeps, with a jolt"

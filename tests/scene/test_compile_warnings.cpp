@@ -92,6 +92,24 @@ TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   EXPECT_NE(w[2].find("a static body never moves"), std::string::npos) << w[2];
   // Without a container nothing is outside.
   EXPECT_TRUE(warningsOf(object("far", "100 3 0", true)).empty());
+  // A body wider than the container (a mesh in other units) cannot be put back by the
+  // walls: said so, with its width; one just inside its width is told the usual.
+  const auto wide = [](double x) {
+    return fmt::format(
+        "<Object><Name>slab</Name><Shape>box</Shape><Size>{} 1 2</Size><ParticleSize>0.5</ParticleSize>"
+        "<InitialPosition>0 3 0</InitialPosition></Object>",
+        x);
+  };
+  const std::vector<std::string> big = warningsOf(kBox + wide(12));
+  ASSERT_EQ(big.size(), 1u);
+  EXPECT_NE(
+      big[0].find(
+          "Object 'slab': it is 12 across in x, wider than the container (10); the walls cannot hold it"),
+      std::string::npos)
+      << big[0];
+  const std::vector<std::string> fits = warningsOf(kBox + wide(9.5) + object("beyond", "9 3 0", true));
+  ASSERT_EQ(fits.size(), 1u) << fmt::format("{}", fmt::join(fits, "\n"));
+  EXPECT_NE(fits[0].find("push the body back inside"), std::string::npos) << fits[0];
 }
 
 // Velocities given to a static object would be dropped without a word: each such object
