@@ -37,16 +37,37 @@ SampledFunction sample(const PairFunction& f, int intervals) {
   return s;
 }
 
-int intervalsFor(const PairFunction& f, int intervals) {
-  const int n = std::max(intervals, 1);
-  const double rc = cutoff(f);
-  double length = 0;  // the function's own length scale; 0: none (a straight line)
+double lengthScale(const PairFunction& f) {
+  double length = 0;
   if (const auto* lj = std::get_if<LennardJones>(&f)) length = lj->finiteDistance;
   if (const auto* ljf = std::get_if<LennardJonesForce>(&f)) length = ljf->sigma;
   if (const auto* c = std::get_if<Curve>(&f))
     for (std::size_t k = 2; k + 1 < c->points.size(); k += 2)
       if (const double gap = c->points[k] - c->points[k - 2]; gap > 0 && (length == 0 || gap < length))
         length = gap;
+  return length;
+}
+
+double samplingError(const PairFunction& f, int intervals) {
+  const double length = lengthScale(f), rc = cutoff(f);
+  if (!(length > 0) || !(rc > 0)) return 0;
+  const SampledFunction s = sample(f, intervals);
+  const double end = std::min(rc, 4 * length);
+  constexpr int kPoints = 4096;
+  double error = 0, largest = 0;
+  for (int k = 0; k < kPoints; ++k) {
+    const double r = end * (k + 0.5) / kPoints;
+    const double exact = evaluate(f, r);
+    largest = std::max(largest, std::abs(exact));
+    error = std::max(error, std::abs(s.at(r) - exact));
+  }
+  return largest > 0 ? error / largest : 0;
+}
+
+int intervalsFor(const PairFunction& f, int intervals) {
+  const int n = std::max(intervals, 1);
+  const double rc = cutoff(f);
+  const double length = lengthScale(f);  // 0: none (a straight line)
   if (!(length > 0) || !(rc > 2 * length)) return n;
   const double wanted = std::ceil(0.5 * n * rc / length);
   return wanted >= kMaxIntervals ? std::max(n, kMaxIntervals) : std::max(n, static_cast<int>(wanted));

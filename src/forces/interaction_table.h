@@ -45,6 +45,16 @@ inline constexpr std::size_t kMaxTableFloats = std::size_t{1} << 26;
 /// cutoffs are at most twice their length scales (every example) are sampled as before.
 [[nodiscard]] int intervalsFor(const PairFunction& f, int intervals = kDefaultIntervals);
 
+/// f's own length scale: FiniteDistance, sigma, the closest two points of a Curve; 0 for
+/// a function without one (a straight line).
+[[nodiscard]] double lengthScale(const PairFunction& f);
+
+/// How far f sampled into `intervals` pieces strays from f where its shape is, over
+/// [0, min(cutoff, 4 lengthScale(f))]: the largest difference there over the largest |f|
+/// there; 0 for a function without a length scale. A cutoff so long that the table's
+/// pieces (kMaxIntervals at most) are as long as the length scale makes it large.
+[[nodiscard]] double samplingError(const PairFunction& f, int intervals);
+
 /// One table entry: what the pair kernel needs for a (material a, material b) pair.
 /// Hot, small and plain; precomputed constants only.
 struct PairEntry {

@@ -167,6 +167,40 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
 
 // A static object never moves: initial velocities given to one would be dropped without
 // a word.
+// Functions whose cutoff is so many times their own length scale (FiniteDistance, sigma)
+// that the table, at its cap of pieces, no longer follows their shape: an
+// InteractionDistance of 1e6 made a fluid repel where it attracts (a black-box review).
+// Each distinct function once; named by the first pair of rows that uses it.
+std::vector<std::string> samplingWarnings(const SceneDesc& d, const solver::Model& m) {
+  std::vector<std::string> out;
+  const std::size_t rows = m.table.materials(), nf = d.fluids.size();
+  const auto rowName = [&](std::size_t r) {
+    return r < nf ? fmt::format("fluid '{}'", d.fluids[r].name) : std::string("the objects");
+  };
+  std::vector<forces::PairFunction> seen;
+  for (std::size_t a = 0; a < rows; ++a)
+    for (std::size_t b = a; b < rows; ++b) {
+      if (a >= nf && b >= nf) continue;  // bodies meet by impulses
+      const forces::PairFunction& f = m.table.interaction(a, b).function;
+      const int n = forces::intervalsFor(f);
+      if (n < forces::kMaxIntervals || std::find(seen.begin(), seen.end(), f) != seen.end()) continue;
+      seen.push_back(f);
+      const double error = forces::samplingError(f, n);
+      if (!(error > 0.02)) continue;
+      const double rc = forces::cutoff(f), length = forces::lengthScale(f);
+      const std::string who =
+          a == b ? fmt::format("Fluid '{}': its own function", d.fluids[a].name)
+                 : fmt::format("Interactions: the function between {} and {}", rowName(a), rowName(b));
+      out.push_back(fmt::format(
+          "{} reaches {:g}, {:.3g} times its length scale {:g} (FiniteDistance, sigma or the closest Curve "
+          "points): the force table's {} pieces are {:.3g} long, and the force it applies strays by up to "
+          "{:.0f}% of its largest value at that scale; keep the cutoff (InteractionDistance, Cutoff) under "
+          "about 1,000 times the length scale",
+          who, rc, rc / length, length, n, rc / n, 100 * error));
+    }
+  return out;
+}
+
 std::vector<std::string> staticObjectWarnings(const SceneDesc& d) {
   std::vector<std::string> out;
   for (const ObjectDesc& o : d.objects) {
@@ -376,6 +410,7 @@ Compiled compile(const SceneDesc& desc) {
   for (std::string& w : carved) out.warnings.push_back(std::move(w));
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
   for (std::string& w : staticObjectWarnings(desc)) out.warnings.push_back(std::move(w));
+  for (std::string& w : samplingWarnings(desc, m)) out.warnings.push_back(std::move(w));
   return out;
 }
 

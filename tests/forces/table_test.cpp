@@ -191,6 +191,36 @@ TEST(InteractionTable, LongCutoffsGetPiecesEnoughForTheirLengthScale) {
   }
 }
 
+// samplingError against a brute-force check: the largest |sampled - exact| over
+// [0, 4 length scales] (a finer grid than the function's own), over the largest |exact|
+// there. Small within the table's cap, growing once the cap makes each piece longer
+// than the length scale allows; 0 for a straight line (no length scale).
+TEST(InteractionTable, SamplingErrorGrowsOnceTheCapIsReached) {
+  double last = 0;
+  for (const double rc : {2.5, 100.0, 1e3, 1e4, 1e6}) {
+    const LennardJones f{30, 1, -20, 400, rc};
+    const int n = intervalsFor(f);
+    const double error = samplingError(f, n);
+    const SampledFunction s = sample(f, n);
+    double worst = 0, largest = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const double r = 4.0 * (k + 0.25) / 20000;
+      worst = std::max(worst, std::abs(s.at(r) - evaluate(f, r)));
+      largest = std::max(largest, std::abs(evaluate(f, r)));
+    }
+    EXPECT_NEAR(error, worst / largest, 0.2 * worst / largest + 1e-4) << rc;
+    if (rc <= 100) {
+      EXPECT_LT(error, 0.005) << rc;
+    }
+    if (rc >= 1e4) {
+      EXPECT_GT(error, 0.1) << rc;
+    }
+    EXPECT_GE(error, 0.9 * last) << rc;
+    last = error;
+  }
+  EXPECT_EQ(samplingError(Linear{5, 1e6, 0, 5}, kMaxIntervals), 0.0);
+}
+
 // Distinct functions each take their own samples; past kMaxTableFloats the table
 // refuses (the scene compiler names the scene's line) instead of exhausting memory.
 TEST(InteractionTable, AFunctionPastTheTablesSizeCapIsRefused) {

@@ -112,6 +112,23 @@ TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   EXPECT_NE(fits[0].find("push the body back inside"), std::string::npos) << fits[0];
 }
 
+// A cutoff so long that the table's capped pieces no longer follow the function's shape
+// is named with how far the force strays; 500 times the length scale is not (a review:
+// InteractionDistance 1e6 made a fluid repel everywhere).
+TEST(CompileWarnings, NamesAFunctionTooLongForItsTable) {
+  const auto scene = [](const char* distance) {
+    return std::string("<Fluid><Name>goo</Name><InteractionDistance>") + distance + "</InteractionDistance>" +
+           fill("-2 1 -2", "2 5 2") + "</Fluid>";
+  };
+  EXPECT_TRUE(warningsOf(scene("500")).empty());
+  const std::vector<std::string> w = warningsOf(scene("1e6"));
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(w[0].find("Fluid 'goo': its own function reaches 1e+06, 1e+06 times its length scale 1"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("the force table's 262144 pieces are 3.81 long"), std::string::npos) << w[0];
+}
+
 // Velocities given to a static object would be dropped without a word: each such object
 // is named with its line and what is not used; a dynamic one, or a static one at rest,
 // is not.
