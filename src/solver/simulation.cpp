@@ -932,11 +932,15 @@ void Simulation::reportBlowUp() const {
       // The check's own arithmetic (scanParticles), so the particle it flagged is found.
       const float inv = invReach_[s.material[i]];
       const float v2 = (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]) * inv * inv;
-      if (std::sqrt(v2) > limit)
-        p = fmt::format("speed is {:.6g} units/s, beyond the limit of {:.6g} units/s ({} interaction distances of "
-                        "{:.6g} per substep)",
-                        std::sqrt(v2) * reach_[s.material[i]], limit * reach_[s.material[i]],
-                        model_.maxTravelPerSubstep, reach_[s.material[i]]);
+      if (std::sqrt(v2) > limit) {
+        // The speed itself in double: v2 overflows float for speeds past about 1e19.
+        const double vx = s.vx[i], vy = s.vy[i], vz = s.vz[i];
+        p = fmt::format(
+            "speed is {:.6g} units/s, beyond the limit of {:.6g} units/s ({} interaction distances of "
+            "{:.6g} per substep)",
+            std::sqrt(vx * vx + vy * vy + vz * vz), limit * reach_[s.material[i]], model_.maxTravelPerSubstep,
+            reach_[s.material[i]]);
+      }
     }
     if (p.empty()) continue;
     worst = i;

@@ -380,6 +380,18 @@ TEST(Simulation, BlowUpIsReportedWithFrameFluidAndParticle) {
   EXPECT_NE(a.find("--max-substeps (now 40)"), std::string::npos) << a;
 }
 
+// A finite speed whose square overflows float is named as it is (a review: "speed is
+// inf units/s" for 1e20).
+TEST(Simulation, AnAbsurdButFiniteSpeedIsNamedAsItIs) {
+  Model m = twoFluids();
+  m.container.reset();
+  State s = cloudState(10, 1, m);
+  s.particles.vy[3] = 1e20f;
+  Simulation sim(m, s);
+  const std::string msg = blowUpMessage(sim);
+  EXPECT_NE(msg.find("speed is 1e+20 units/s"), std::string::npos) << msg;
+}
+
 TEST(Simulation, EverySubstepIsCheckedAndTheLowestBadIdIsNamed) {
   Model m = twoFluids();
   State s = cloudState(50, 1, m);
