@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "core/error.h"
 #include "number_checks.h"
@@ -28,6 +29,10 @@ int infoCommand(const InfoOptions& o) {
     printRunFolderInfo(o.file);
     return static_cast<int>(ExitCode::Ok);
   }
+  // A path that is not there: what is wrong is the path, whatever its extension (a
+  // mistyped run folder was told "no file extension").
+  if (!std::filesystem::exists(o.file, ec) && !ec)
+    throw IoError(fmt::format("cannot read '{}': No such file or directory", displayFile(o.file)));
   std::string ext = std::filesystem::path(o.file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -114,6 +114,17 @@ TEST(Info, UnknownExtensionIsBadInput) {
   expectContains(r.err, ".scene (or .xml), .sim, .pdc, .ply");
 }
 
+// A path that is not there is named as missing, whatever its extension: a mistyped run
+// folder (no extension) was told "no file extension" with exit 2 (a review).
+TEST(Info, AMissingPathIsAnIoErrorWhateverItsExtension) {
+  TempDir tmp;
+  for (const char* path : {"no_such_runSim", "gone.sim", "gone.txt"}) {
+    const RunResult r = runSoftsub(std::string("info ") + path, tmp.path());
+    EXPECT_EQ(r.code, 3) << path;
+    expectContains(r.err, std::string("cannot read '") + path + "': No such file or directory");
+  }
+}
+
 // `run` takes a scene under any name; `info` reads a scene named .xml too (it refused it).
 TEST(Info, ASceneNamedXmlIsAScene) {
   TempDir tmp;
