@@ -1,6 +1,7 @@
 #include "cache/pdc_format.h"
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -225,6 +226,18 @@ PdcFile decodePdc(std::string_view bytes, const std::string& fileName) {
       for (double& v : attribute.values) v = r.i32(element);
     } else {
       for (double& v : attribute.values) v = r.f64Unchecked();
+      // As the .sim and PLY readers: a non-finite value is a broken cache, not data (info
+      // showed a file with NaN positions as fine, its bounds leaving them out).
+      for (std::size_t k = 0; k < attribute.values.size(); ++k)
+        if (!std::isfinite(attribute.values[k])) {
+          const std::size_t per =
+              attribute.type == PdcType::Vector || attribute.type == PdcType::VectorArray ? 3 : 1;
+          r.fail(element,
+                 fmt::format(
+                     "non-finite value {} at particle {}", attribute.values[k],
+                     attribute.type == PdcType::Double || attribute.type == PdcType::Vector ? 0 : k / per),
+                 "finite numbers");
+        }
     }
     file.attributes.push_back(std::move(attribute));
   }

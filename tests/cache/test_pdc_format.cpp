@@ -1,5 +1,6 @@
 // Maya PDC: the bytes checked field by field by a minimal big-endian reader written here,
 // independent of the module's decoder; then the decoder's round trip and its refusals.
+#include <cmath>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -222,6 +223,26 @@ TEST(PdcFormat, TruncatedAndGarbageInputIsRefused) {
   expectRefused(Builder().header(1, 1).i32(1000).str("x").i32(2).f64(1).bytes, "name too long");
   expectRefused(Builder().header(1, 2).attribute("m", 2).f64(1).attribute("m", 2).f64(1).bytes,
                 "duplicate attribute");
+  // Non-finite doubles, as the .sim and PLY readers refuse them (info showed a file with
+  // NaN positions as fine): the second particle's y, and an infinite double.
+  try {
+    static_cast<void>(decodePdc(Builder()
+                                    .header(2, 1)
+                                    .attribute("position", 5)
+                                    .f64(0)
+                                    .f64(0)
+                                    .f64(0)
+                                    .f64(1)
+                                    .f64(std::nan(""))
+                                    .f64(1)
+                                    .bytes,
+                                "nan.pdc"));
+    ADD_FAILURE() << "NaN accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("non-finite value nan at particle 1"), std::string::npos)
+        << e.what();
+  }
+  expectRefused(Builder().header(1, 1).attribute("mass", 2).f64(HUGE_VAL).bytes, "infinite double");
 }
 
 TEST(PdcFormat, HugeDeclaredCountsAreRefusedWithoutAllocating) {
