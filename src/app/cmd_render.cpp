@@ -1,6 +1,7 @@
 #include "cmd_render.h"
 #include "number_checks.h"
 
+#include <optional>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -248,12 +249,26 @@ int renderCommand(const RenderOptions& o) {
     prepareOutputs();
     observer.emplace(*maker, rec.camera, out, sceneName, range, surfaceSettings);
     pictures = &*observer;
-    ProgressLine progress(chatty, static_cast<std::int64_t>(rec.frameCount()), 0);
+    // The progress runs to the last recorded frame in the range, with the particles of
+    // the first one drawn (it counted every recorded frame and showed 0 particles).
+    std::int64_t lastDrawn = 0;
+    std::optional<std::size_t> firstDrawn;
+    for (std::size_t i = 0; i < rec.frameCount(); ++i)
+      if (range.contains(rec.frameNumber(i))) {
+        lastDrawn = rec.frameNumber(i);
+        if (!firstDrawn) firstDrawn = i;
+      }
+    std::size_t particles = 0;
+    if (firstDrawn)
+      for (const FluidSnapshot& f : rec.load(*firstDrawn).fluids) particles += f.ids.size();
+    ProgressLine progress(chatty, lastDrawn, particles);
     for (std::size_t i = 0; i < rec.frameCount(); ++i) {
       if (!range.contains(rec.frameNumber(i))) continue;
       if (stop.load()) break;
+      const auto t0 = std::chrono::steady_clock::now();
       pictures->onFrame(rec.load(i));
-      progress.update({rec.frameNumber(i), rec.frameNumber(rec.frameCount() - 1), 0, 0});
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      progress.update({rec.frameNumber(i), lastDrawn, 0, seconds});
     }
     progress.end();
     if (stop.load()) {

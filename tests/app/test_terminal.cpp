@@ -37,6 +37,25 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
   EXPECT_EQ(listFrameFiles(tmp / "o").size(), 4u);
 }
 
+// render of a recorded folder at a terminal: the progress runs to the last frame of the
+// range drawn, with the recording's particles (it showed "frame 0/11 | 0 particles" and
+// was never redrawn: a review).
+TEST(Terminal, RenderOfARecordingDrawsItsProgressToTheRangesLastFrame) {
+  TempDir tmp;
+  ASSERT_EQ(runSoftsub("run -q --frames 6 --formats sim --out " + quote(tmp / "o") + " " +
+                           quote(examplesDir() / "two-fluids.scene"),
+                       tmp.path())
+                .code,
+            0);
+  const RunResult r = runSoftsubInTerminal(
+      "render " + quote(tmp / "o") + " --frames 0:3 --width 64 --height 36 --out " + quote(tmp / "p"),
+      tmp.path());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\rframe 3/3 | 1,728 particles | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" ms/frame | ETA 0:00"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("/6 |"), std::string::npos) << r.out;
+}
+
 // The viewer's stability hint as a warning (a scene that would gain energy without ever
 // tripping the blow-up check ran silently): the example's jelly at ten times its
 // viscosity is called unstable at its 24 substeps; the example itself, and --adaptive
