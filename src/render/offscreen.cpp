@@ -125,13 +125,27 @@ Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), he
   if (width < 1 || height < 1 || width > maxSize || height > maxSize)
     throw IoError(fmt::format("cannot draw a {}x{} picture: this OpenGL allows 1 to {} pixels a side", width,
                               height, maxSize));
-  samples = std::clamp(samples, 0, maxSamples);
+  // A large picture may not fit with several samples a pixel (a software rasteriser's
+  // 12000 x 12000 x 4 samples is 4.6 GB): fewer samples, down to one, before giving up.
+  for (int s = std::clamp(samples, 0, maxSamples);; s /= 2) {
+    if (allocate(s)) return;
+    release();
+    if (s == 0) break;
+  }
+  const double megabytes = 12.0 * width * height / (1 << 20);  // colour, depth and the resolved copy
+  throw IoError(
+      fmt::format("cannot draw a {}x{} picture: OpenGL could not make a framebuffer that large (about "
+                  "{:.0f} MB at one sample a pixel); draw it smaller (--width, --height)",
+                  width, height, megabytes));
+}
+
+bool Framebuffer::allocate(int samples) {
   glGenRenderbuffers(1, &colour_);
   glBindRenderbuffer(GL_RENDERBUFFER, colour_);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width_, height_);
   glGenRenderbuffers(1, &depth_);
   glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width, height);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width_, height_);
   glGenFramebuffers(1, &drawFbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, drawFbo_);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
@@ -139,24 +153,27 @@ Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), he
   const GLenum drawStatus = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glGenRenderbuffers(1, &resolveColour_);
   glBindRenderbuffer(GL_RENDERBUFFER, resolveColour_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
   glGenFramebuffers(1, &resolveFbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo_);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolveColour_);
   const GLenum resolveStatus = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   glBindFramebuffer(GL_FRAMEBUFFER, drawFbo_);
-  if (drawStatus != GL_FRAMEBUFFER_COMPLETE || resolveStatus != GL_FRAMEBUFFER_COMPLETE)
-    throw IoError(fmt::format("cannot draw a {}x{} picture: incomplete framebuffer (0x{:x}, 0x{:x})", width,
-                              height, drawStatus, resolveStatus));
+  while (glGetError() != GL_NO_ERROR) {
+  }  // an allocation that failed also set an error: cleared, the status says it
+  return drawStatus == GL_FRAMEBUFFER_COMPLETE && resolveStatus == GL_FRAMEBUFFER_COMPLETE;
 }
 
-Framebuffer::~Framebuffer() {
+void Framebuffer::release() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   const GLuint fbos[] = {drawFbo_, resolveFbo_};
   glDeleteFramebuffers(2, fbos);
   const GLuint rbs[] = {colour_, depth_, resolveColour_};
   glDeleteRenderbuffers(3, rbs);
+  drawFbo_ = resolveFbo_ = colour_ = depth_ = resolveColour_ = 0;
 }
+
+Framebuffer::~Framebuffer() { release(); }
 
 void Framebuffer::bind() { glBindFramebuffer(GL_FRAMEBUFFER, drawFbo_); }
 

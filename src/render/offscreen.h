@@ -30,6 +30,8 @@ class OffscreenContext {
 /// back as an Image. Sizes from 1 to the driver's limit; IoError beyond it.
 class Framebuffer {
  public:
+  /// `samples` a pixel, or fewer where a large picture does not fit with them (down to
+  /// one); IoError when it does not fit at all or is larger than OpenGL allows.
   Framebuffer(int width, int height, int samples = 4);
   ~Framebuffer();
   Framebuffer(const Framebuffer&) = delete;
@@ -44,6 +46,11 @@ class Framebuffer {
   [[nodiscard]] int height() const { return height_; }
 
  private:
+  /// Makes the buffers at `samples` a pixel; false when OpenGL could not (incomplete).
+  bool allocate(int samples);
+  /// Deletes the buffers (none made: nothing).
+  void release();
+
   int width_, height_;
   unsigned drawFbo_ = 0, resolveFbo_ = 0, colour_ = 0, depth_ = 0, resolveColour_ = 0;
 };
