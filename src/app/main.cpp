@@ -1,5 +1,6 @@
 // softsub: the command line. Parses, dispatches to one command, and maps every error
 // to its exit code (core/error.h, docs/cli.md) in this one place.
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -94,7 +95,32 @@ int runApp(int argc, char** argv) {
       fmt::print(stderr, "Run 'softsub --help' for usage.\n");
       return code(ExitCode::BadInput);
     }
+    // A command that needs a command of its own (bench lammps): name the word it got.
+    for (const CLI::App* sub : subcommands) {
+      if (!sub->parsed() || sub->get_subcommands({}).empty()) continue;
+      bool inner = false;
+      for (const CLI::App* s2 : sub->get_subcommands({})) inner = inner || s2->parsed();
+      if (inner) continue;
+      std::string names, word;
+      for (const CLI::App* s2 : sub->get_subcommands({}))
+        names += (names.empty() ? "" : ", ") + s2->get_name();
+      const auto at = std::find(args.begin() + 1, args.end(), sub->get_name());
+      for (auto k = at; k != args.end() && word.empty(); ++k)
+        if (k != at && !k->starts_with("-")) word = *k;
+      printError(word.empty()
+                     ? fmt::format("'{}' needs a command (allowed: {})", sub->get_name(), names)
+                     : fmt::format("'{}' is not a {} command (allowed: {})", word, sub->get_name(), names));
+      fmt::print(stderr, "Run 'softsub {} --help' for usage.\n", sub->get_name());
+      return code(ExitCode::BadInput);
+    }
     std::string what = e.what();
+    // The scene named without -f/--scene (the positional) is called by that name, not
+    // by the option's (CLI11 names the option "--scene" either way).
+    if (what.starts_with("--scene: ") && std::none_of(args.begin() + 1, args.end(), [](const std::string& a) {
+          return a == "-f" || a == "--scene" || a.starts_with("--scene=") ||
+                 (a.starts_with("-f") && a.size() > 2);
+        }))
+      what = (view->parsed() ? "INPUT" : "SCENE") + what.substr(7);
     // CLI11's "--frames: At Most 1 required but received 2" for an option given twice.
     if (const auto at = what.find(": At Most 1 required but received "); at != std::string::npos)
       what = fmt::format("{}: given {} times (allowed: once)", what.substr(0, at),

@@ -192,6 +192,26 @@ TEST(Cli, AnUnknownCommandIsNamedWithTheCommandsThatExist) {
         << args << ": " << r.err;
   }
   EXPECT_NE(runSoftsub("", tmp.path()).err.find("A subcommand is required"), std::string::npos);
+  // The same one level down (a review: `bench foo` said "A subcommand is required").
+  const RunResult bench = runSoftsub("bench foo", tmp.path());
+  EXPECT_EQ(bench.code, 2);
+  EXPECT_NE(bench.err.find("error: 'foo' is not a bench command (allowed: lammps)"), std::string::npos)
+      << bench.err;
+  EXPECT_NE(runSoftsub("bench", tmp.path()).err.find("error: 'bench' needs a command (allowed: lammps)"),
+            std::string::npos);
+}
+
+// An empty scene name given without -f is blamed on SCENE, the positional the user
+// typed (it said --scene); with -f, on --scene.
+TEST(Cli, AnEmptySceneNameIsBlamedOnWhatWasTyped) {
+  TempDir tmp;
+  const RunResult positional = runSoftsub("run ''", tmp.path());
+  EXPECT_EQ(positional.code, 2);
+  EXPECT_NE(positional.err.find("error: command line: SCENE: an empty name is no file or folder"),
+            std::string::npos)
+      << positional.err;
+  EXPECT_NE(runSoftsub("run -f ''", tmp.path()).err.find("error: command line: --scene: an empty name"),
+            std::string::npos);
 }
 
 // A particle cap below 1 says what is allowed in words (it printed the range up to the
