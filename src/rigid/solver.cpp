@@ -218,7 +218,7 @@ void RigidSolver::prepareDrag(const BodySet& set, const std::vector<BodyState>& 
 // step e_f / m added to its velocity (and, when the integrator drifts after kicking, to
 // its position over `drift`); it gets dv_f = A_f⁻¹ (e_f + dt sum_b G_fb dq_b) instead.
 void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInverseMass, double dt,
-                            double drift) {
+                            double drift, double kicked) {
   for (const FluidDrag& fluid : fluids_) {
     const std::uint32_t f = fluid.slot;
     Vec3 w = fluid.step;
@@ -227,7 +227,7 @@ void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInv
       w += dt * (cp.g * dragStep_[cp.body]);
     }
     const Vec3 change =
-        fluid.inverse * w - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
+        fluid.inverse * w - kicked * fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
     s.vx[f] += static_cast<float>(change.x());
     s.vy[f] += static_cast<float>(change.y());
     s.vz[f] += static_cast<float>(change.z());
@@ -1018,7 +1018,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
                        ParticleStore& s, std::span<const SlotPair> pairs,
                        std::span<const float> materialInverseMass, std::span<const float> materialRadius,
                        const forces::InteractionTable* table, const Walls* walls, const Vec3& gravity,
-                       double dt, double fluidDrift) {
+                       double dt, double fluidDrift, double fluidKicked) {
   if (set.empty()) return;
   const std::size_t nb = set.bodies.size();
   // Body particles may have been moved by the fluid integrator: put them back on their
@@ -1091,7 +1091,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     // pallet and the pallet shook.)
     for (std::size_t b = 0; b < nb; ++b)
       if (dragged_[b]) dragStep_[b] << vel_[b] - startVel_[b], omega_[b] - startOmega_[b];
-    dragFluid(s, materialInverseMass, dt, fluidDrift);
+    dragFluid(s, materialInverseMass, dt, fluidDrift, fluidKicked);
   }
   for (std::size_t b = 0; b < nb; ++b) {
     const BodyInfo& info = set.bodies[b];

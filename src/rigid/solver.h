@@ -93,11 +93,15 @@ class RigidSolver {
   /// fluid particles they touch. Those particles were kicked by dt (f / m + g) before
   /// this call, with `store.f` as it still is; their velocities are corrected, and their
   /// positions by `fluidDrift` times the correction (dt where the integrator drifted them
-  /// after the kick, 0 where before).
+  /// after the kick, 0 where before). `fluidKicked`: the share of that dt kick the fluid
+  /// was given explicitly since its last correction (1; velocity Verlet's first substep
+  /// of a run, whose opening half kick follows no closing one, 0.5): the correction
+  /// replaces that much (it took the whole kick as given, and a plate moving under a
+  /// particle with strong drag was sent backwards on a run's first substep).
   void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
             ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
             std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
-            const Vec3& gravity, double dt, double fluidDrift);
+            const Vec3& gravity, double dt, double fluidDrift, double fluidKicked = 1.0);
 
   /// The fluid/body drag's implicit system (gatherDrag) set up now, for the next step():
   /// call it where the forces in `store.f` were evaluated, before the fluid is kicked and
@@ -125,7 +129,8 @@ class RigidSolver {
                   std::span<const float> materialInverseMass, const Vec3& gravity, double dt);
   /// The fluid particles' side: each one's velocity (and position, by `drift` times the
   /// change) from its explicit step to the implicit one, with the bodies' solved dq.
-  void dragFluid(ParticleStore& store, std::span<const float> materialInverseMass, double dt, double drift);
+  void dragFluid(ParticleStore& store, std::span<const float> materialInverseMass, double dt, double drift,
+                 double kicked);
   void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
                        const Walls* walls, double dt);
   /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,

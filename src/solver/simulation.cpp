@@ -286,12 +286,13 @@ void Simulation::prepareBodies() {
                      model_.table, model_.gravity, this->dt());
 }
 
-void Simulation::stepBodies(double dt) {
+void Simulation::stepBodies(double dt, double fluidKicked) {
   if (model_.bodies.empty()) return;
   rigid_.step(
       model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_, materialInverseMass_,
       materialRadius_, &model_.table, model_.container ? &*model_.container : nullptr, model_.gravity, dt,
-      model_.integrator == Integrator::ExplicitEuler ? 0.0 : dt);  // explicit Euler drifts before kicking
+      model_.integrator == Integrator::ExplicitEuler ? 0.0 : dt,  // explicit Euler drifts before kicking
+      fluidKicked);
 }
 
 namespace {
@@ -637,6 +638,10 @@ void Simulation::step() {
       // frame's last substep closes with its half kick, so velocities are at whole steps
       // wherever a frame ends (caches, energies, checkpoints, --adaptive).
       const float opening = kickOwed_ ? dt : 0.5f * dt;
+      // The explicit kick since the fluid's last drag correction: a whole dt (the last
+      // substep's closing half and this one's opening half, or one merged kick), but
+      // only the opening half on a run's first substep.
+      const double kicked = kickOwed_ || state_.frame > 0 ? 1.0 : 0.5;
       const bool closes = substepInFrame_ + 1 >= substeps_;
       ++substepInFrame_;
       if (fused) {
@@ -645,7 +650,7 @@ void Simulation::step() {
         prepareBodies();  // where the forces were evaluated
         kick(opening);
         drift(dt);
-        stepBodies(this->dt());
+        stepBodies(this->dt(), kicked);
         applyWalls();  // last, as above
       }
       computeForces();
