@@ -43,7 +43,7 @@ SCHEMA = {
     'Fill': [
         ('Shape', 'enum', '-', 'required', 'box, sphere, mesh; mesh needs Geometry and Spacing', 'what the lattice fills'),
         ('Spacing', 'real', 'units', '1', '> 0', 'distance between neighbouring lattice points'),
-        ('OutsideObjects', 'bool', '-', 'false', 'true, false, 1, 0', 'extension: leave out the points inside a closed object at its initial pose (fluid filled around objects)'),
+        ('OutsideObjects', 'bool', '-', 'false', 'true, false, 1, 0', 'extension: leave out the points inside or overlapping an object at its initial pose (fluid filled around objects)'),
     ],
     'Fill.box': [
         ('Min', 'vec3', 'units', '0 0 0', '3 finite numbers; < Max on every axis', 'lower corner of the box'),

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <fmt/format.h>
@@ -144,6 +146,7 @@ std::vector<Vec3> bodyParticles(const geometry::TriangleMesh& scaled, bool close
     const Aabb box = scaled.bounds();
     const Vec3 shift = 0.5 * (Vec3(box.lo[0] + box.hi[0], box.lo[1] + box.hi[1], box.lo[2] + box.hi[2]) - (lo + hi));
     for (Vec3& p : points) p += shift;
+    for (Vec3& p : solid) p += shift;  // the volume fill stays the particles' lattice
   }
   return points;
 }
@@ -182,9 +185,17 @@ namespace {
 // position + rotation x): which points of the world lie in it.
 class PlacedSolid {
  public:
-  PlacedSolid(const std::vector<Vec3>& solid, const Vec3& lo, double spacing, const Vec3& position,
-              const Quat& rotation)
-      : lo_(lo), hi_(lo), spacing_(spacing), position_(position), back_(rotation.conjugate()) {
+  // Voxels centred on the fill's points: `lo` is their lowest corner (the points' least
+  // coordinates less half a voxel), so a body whose lattice was centred in its mesh's box
+  // (bodyParticles) is tested where its particles are (tested from the mesh's corner, a
+  // box 2.7 wide at particle size 0.5 left points 0.2 deep on its high side).
+  PlacedSolid(const std::vector<Vec3>& solid, double spacing, const Vec3& position, const Quat& rotation)
+      : lo_(lowest(solid, spacing)),
+        hi_(lo_),
+        spacing_(spacing),
+        position_(position),
+        back_(rotation.conjugate()) {
+    const Vec3 lo = lo_;
     voxels_.reserve(solid.size());
     for (const Vec3& p : solid) {
       const Vec3 k = ((p - lo) / spacing).array() - 0.5;
@@ -214,6 +225,11 @@ class PlacedSolid {
   }
 
  private:
+  static Vec3 lowest(const std::vector<Vec3>& points, double spacing) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    for (const Vec3& p : points) lo = lo.cwiseMin(p);
+    return lo.array() - 0.5 * spacing;
+  }
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 |
            static_cast<std::uint64_t>(z);
@@ -316,20 +332,63 @@ ObjectShapes::ObjectShapes(const SceneDesc& desc) {
       const Mat3 r = st.orientation.toRotationMatrix();
       st.angularMomentum = r * p.mass.inertia * r.transpose() * omega;
     }
-    if (!solid.empty()) {
-      const Aabb box = scaled.bounds();
-      p.solid.emplace(solid, Vec3(box.lo[0], box.lo[1], box.lo[2]), p.spacing, od.initialPosition,
-                      st.orientation);
-    }
+    if (!solid.empty()) p.solid.emplace(solid, p.spacing, od.initialPosition, st.orientation);
   }
 }
 
 ObjectShapes::~ObjectShapes() = default;
 ObjectShapes::ObjectShapes(ObjectShapes&&) noexcept = default;
 
-bool ObjectShapes::inside(const Vec3& p) const {
-  return std::any_of(objects_.begin(), objects_.end(),
-                     [&](const Prepared& o) { return o.solid && o.solid->depth(p) > 0; });
+// Every object's particles where its initial pose puts them, in cells of the largest
+// particle diameter (a hash of cell coordinates), for ObjectShapes::inside.
+struct ObjectShapes::Particles {
+  double cell = 1, largest = 0;  // cell size; the largest particle radius
+  std::unordered_map<std::uint64_t, std::vector<std::pair<Vec3, double>>> cells;  // position, radius
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto part = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
+    return part(x) << 42 | part(y) << 21 | part(z);
+  }
+};
+
+const ObjectShapes::Particles& ObjectShapes::particles() const {
+  if (particles_) return *particles_;
+  particles_ = std::make_unique<Particles>();
+  Particles& out = *particles_;
+  for (const Prepared& o : objects_) out.largest = std::max(out.largest, 0.5 * o.spacing);
+  out.cell = std::max(2 * out.largest, 1e-12);
+  for (const Prepared& o : objects_) {
+    const Mat3 r = o.state.orientation.toRotationMatrix();
+    for (const Vec3& q : o.points) {
+      const Vec3 w = o.state.position + r * (q - o.mass.center);
+      const Vec3 c = (w / out.cell).array().floor();
+      out.cells[Particles::key(static_cast<std::int64_t>(c.x()), static_cast<std::int64_t>(c.y()),
+                               static_cast<std::int64_t>(c.z()))]
+          .emplace_back(w, 0.5 * o.spacing);
+    }
+  }
+  return out;
+}
+
+bool ObjectShapes::inside(const Vec3& p, double radius) const {
+  if (std::any_of(objects_.begin(), objects_.end(),
+                  [&](const Prepared& o) { return o.solid && o.solid->depth(p) > 0; }))
+    return true;
+  if (objects_.empty()) return false;
+  const Particles& ps = particles();
+  const double reach = radius + ps.largest;
+  const auto span = static_cast<std::int64_t>(std::ceil(reach / ps.cell));
+  const Vec3 c = (p / ps.cell).array().floor();
+  const auto cx = static_cast<std::int64_t>(c.x()), cy = static_cast<std::int64_t>(c.y()),
+             cz = static_cast<std::int64_t>(c.z());
+  for (std::int64_t x = cx - span; x <= cx + span; ++x)
+    for (std::int64_t y = cy - span; y <= cy + span; ++y)
+      for (std::int64_t z = cz - span; z <= cz + span; ++z) {
+        const auto found = ps.cells.find(Particles::key(x, y, z));
+        if (found == ps.cells.end()) continue;
+        for (const auto& [q, r] : found->second)
+          if ((q - p).squaredNorm() < (radius + r) * (radius + r)) return true;
+      }
+  return false;
 }
 
 void addBodies(const SceneDesc& desc, ObjectShapes&& shapes, solver::Model& m, solver::State& state,

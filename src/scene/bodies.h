@@ -1,6 +1,7 @@
 #pragma once
 /// `<Object>` → rigid bodies: geometry (loaded or primitive), mass properties, particles
 /// and initial state. Used by compile() and, for the particle bound, by the reader.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,14 +38,18 @@ class ObjectShapes {
   ObjectShapes& operator=(const ObjectShapes&) = delete;
   ObjectShapes& operator=(ObjectShapes&&) = delete;
 
-  /// Whether p lies in a closed object's volume at its initial pose: in one of the voxels
-  /// (the object's particle size) of its volume fill, which reach about half a voxel
-  /// past its surface. Open meshes have no inside.
-  [[nodiscard]] bool inside(const Vec3& p) const;
+  /// Whether a particle of `radius` at p starts inside an object or overlapping it, at
+  /// the object's initial pose: in one of the voxels of a closed object's volume fill
+  /// (its particles' lattice, each voxel a particle wide), or closer to one of any
+  /// object's particles than their two radii (open meshes included).
+  [[nodiscard]] bool inside(const Vec3& p, double radius) const;
 
  private:
   struct Prepared;
+  struct Particles;
+  [[nodiscard]] const Particles& particles() const;  // built at the first call
   std::vector<Prepared> objects_;
+  mutable std::unique_ptr<Particles> particles_;
   friend void addBodies(const SceneDesc&, ObjectShapes&&, solver::Model&, solver::State&,
                         std::vector<geometry::TriangleMesh>&, std::vector<std::string>*);
 };

@@ -369,8 +369,9 @@ Compiled compile(const SceneDesc& desc) {
       const std::size_t from = points.size();
       fillPoints(desc, fd, k, points);
       if (!fill.outsideObjects) continue;
+      const double radius = 0.5 * fd.params.particleSize;
       const auto kept = std::remove_if(points.begin() + static_cast<std::ptrdiff_t>(from), points.end(),
-                                       [&](const Vec3& p) { return shapes.inside(p); });
+                                       [&](const Vec3& p) { return shapes.inside(p, radius); });
       const auto left = static_cast<std::size_t>(kept - points.begin()) - from;
       if (left == 0)
         carved.push_back(

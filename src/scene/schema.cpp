@@ -167,8 +167,8 @@ constexpr Field<FillDesc> kFillCommon[] = {
     field<&FillDesc::outsideObjects>({.tag = "OutsideObjects",
                                       .kind = Kind::Bool,
                                       .unit = "-",
-                                      .meaning = "extension: leave out the points inside a closed "
-                                                 "object at its initial pose (fluid filled around "
+                                      .meaning = "extension: leave out the points inside or overlapping "
+                                                 "an object at its initial pose (fluid filled around "
                                                  "objects)",
                                       .defaultText = "`false`"}),
 };

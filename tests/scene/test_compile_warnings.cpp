@@ -197,16 +197,19 @@ TEST(CompileWarnings, CountsTheFluidParticlesThatStartInsideAnObject) {
                   .empty());
 }
 
-// A fill with OutsideObjects leaves out its points inside closed objects, at the objects'
-// initial poses: the same box as above, turned 0, 30 and 45 degrees, and a second object
-// (a ball) inside the same fill. Each point the fill keeps is outside both, each point it
-// drops inside one (brute force, in each object's own axes; no point lies within 1e-3 of
-// the crate's faces, which its voxels match, or within 0.3 of the ball's surface), the rest of the fluid
-// (explicit positions, a fill without the tag) keeps every point, and only what they keep inside the crate is
-// said to start inside it.
+// A fill with OutsideObjects leaves out its points inside closed objects, or overlapping
+// an object's particles, at the objects' initial poses: the same box as above, turned 0,
+// 30 and 45 degrees, and a second object (a ball) in the same fill; the fluid's particles
+// of radius 0.2. Each point is checked against brute force: inside the crate (in its own
+// axes; its voxels match it, as 3 is a whole number of its particles, and no point lies
+// within 1e-3 of a face), inside the ball (no point within 0.3 of its surface, farther
+// than its voxels reach past it), or closer to one of the two objects' particles than
+// the two radii (every particle, from the compiled model). The rest of the fluid
+// (explicit positions, a fill without the tag) keeps every point, and only what it keeps
+// inside the crate is said to start inside it.
 TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
   const Vec3 centre(0.25, 2.25, 0.1), ball(-2, 2, 2);
-  const double radius = 1.3;
+  const double radius = 1.3, fluidRadius = 0.2;
   const auto carvedFill = [](const std::string& min, const std::string& max) {
     return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max +
            "</Max><Spacing>1</Spacing><OutsideObjects>true</OutsideObjects></Fill>";
@@ -214,8 +217,8 @@ TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
   for (const double turn : {0.0, 30.0, 45.0}) {
     SCOPED_TRACE(turn);
     const std::string text = sceneWith(
-        "<Fluid><Name>goo</Name><Particles>0.25 2.25 0.1</Particles>" + carvedFill("-4 0 -4", "4 4 4") +
-        fill("-1 1 -1", "1 3 1") + "</Fluid>\n" +
+        "<Fluid><Name>goo</Name><ParticleSize>0.4</ParticleSize><Particles>0.25 2.25 0.1</Particles>" +
+        carvedFill("-4 0 -4", "4 4 4") + fill("-1 1 -1", "1 3 1") + "</Fluid>\n" +
         fmt::format(
             "<Object><Name>crate</Name><Shape>box</Shape><Size>3 3 3</Size>"
             "<ParticleSize>0.5</ParticleSize><InitialPosition>{} {} {}</InitialPosition>"
@@ -232,24 +235,44 @@ TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
       return own.cwiseAbs().maxCoeff() < 1.5;
     };
     const auto inBall = [&](const Vec3& p) {
-      // The ball's voxels (0.25) reach up to 0.22 past its surface.
       EXPECT_GT(std::abs((p - ball).norm() - radius), 0.3) << "a point near the sphere";
       return (p - ball).norm() < radius;
     };
+    // The objects' particles where the compiled model puts them.
+    std::vector<std::pair<Vec3, double>> bodyParticles;
+    const rigid::BodySet& set = c.model.bodies;
+    for (std::size_t b = 0; b < set.bodies.size(); ++b) {
+      const rigid::BodyInfo& info = set.bodies[b];
+      const rigid::BodyState& pose = c.state.bodies[b];
+      for (std::uint32_t k = info.firstId - set.firstId; k < info.firstId - set.firstId + info.count; ++k)
+        bodyParticles.emplace_back(pose.position + pose.orientation * Vec3(set.ox[k], set.oy[k], set.oz[k]),
+                                   info.particleRadius);
+    }
+    const auto overlaps = [&](const Vec3& p) {
+      bool any = false;
+      for (const auto& [q, r] : bodyParticles) {
+        const double gap = (q - p).norm() - (fluidRadius + r);
+        EXPECT_GT(std::abs(gap), 1e-4) << "a point just touching a particle";
+        any = any || gap < 0;
+      }
+      return any;
+    };
     std::vector<Vec3> expected = {centre};  // the explicit position, inside the crate, kept
-    int dropped = 0;
+    int dropped = 0, byOverlapOnly = 0;
     for (double z = -3.5; z < 4; ++z)
       for (double y = 0.5; y < 4; ++y)
         for (double x = -3.5; x < 4; ++x) {
-          if (inCrate({x, y, z}) || inBall({x, y, z})) ++dropped;
+          const bool in = inCrate({x, y, z}) || inBall({x, y, z}), near = overlaps({x, y, z});
+          if (in || near) ++dropped;
           else expected.emplace_back(x, y, z);
+          if (near && !in) ++byOverlapOnly;
         }
     for (double z = -0.5; z < 1; ++z)
       for (double y = 1.5; y < 3; ++y)
         for (double x = -0.5; x < 1; ++x) expected.emplace_back(x, y, z);  // the plain fill, kept
     ASSERT_GT(dropped, 27);
     const ParticleStore& s = c.state.particles;
-    ASSERT_EQ(c.model.fluids.at(0).count, expected.size());
+    ASSERT_EQ(c.model.fluids.at(0).count, expected.size()) << byOverlapOnly << " dropped for overlap alone";
     EXPECT_EQ(c.leftOutInsideObjects, std::vector<std::size_t>{static_cast<std::size_t>(dropped)});
     for (std::size_t i = 0; i < expected.size(); ++i)
       ASSERT_EQ(Vec3(s.px[i], s.py[i], s.pz[i]), expected[i].cast<float>().cast<double>()) << i;
@@ -262,6 +285,36 @@ TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
               std::string::npos)
         << c.warnings[0];
   }
+}
+
+// A box whose size is not a whole number of its particles (2.7 at 0.5): its lattice of
+// 5 a side is centred in the box, its particles' outer surfaces at +-1.25, and the fill
+// is left out where those particles are, on both sides alike (tested from the mesh's
+// corner, points 0.2 inside the high side's particles were kept and then called inside
+// it: a review). No kept point lies within the particles' extent, and none is said to
+// start inside the box.
+TEST(CompileFills, OutsideObjectsFollowsALatticeCentredInItsBox) {
+  const Compiled c = compile(readSceneText(
+      sceneWith(
+          "<Fluid><Name>w</Name><ParticleSize>0.1</ParticleSize><Fill><Shape>box</Shape><Min>-2 -2 "
+          "-0.05</Min>"
+          "<Max>2 2 0.05</Max><Spacing>0.1</Spacing><OutsideObjects>true</OutsideObjects></Fill></Fluid>"
+          "<Object><Name>b</Name><Shape>box</Shape><Size>2.7 2.7 2.7</Size><ParticleSize>0.5</ParticleSize>"
+          "<IsDynamic>false</IsDynamic></Object>"),
+      "t.scene"));
+  const ParticleStore& s = c.state.particles;
+  double low = -10, high = 10;  // the nearest kept points on the x axis, either side
+  for (std::size_t i = 0; i < c.model.fluids[0].count; ++i) {
+    const Vec3 p(s.px[i], s.py[i], s.pz[i]);
+    EXPECT_GE(p.cwiseAbs().head<2>().maxCoeff(), 1.25 - 1e-5)
+        << "kept within the particles: " << p.transpose();
+    if (std::abs(p.y()) < 0.06) {
+      if (p.x() < 0) low = std::max(low, p.x());
+      else high = std::min(high, p.x());
+    }
+  }
+  EXPECT_NEAR(low, -high, 1e-5) << "the same margin on both sides";
+  for (const std::string& w : c.warnings) EXPECT_EQ(w.find("start inside it"), std::string::npos) << w;
 }
 
 // A fill whose every point lies inside an object adds nothing: a warning names it, and a
