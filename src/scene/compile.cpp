@@ -95,11 +95,10 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
       int wider = -1;
       for (int a = 0; a < 3 && wider < 0; ++a)
         if ((a != 1 || c.closed) && hi[a] - lo[a] + 2 * info.particleRadius > c.hi[a] - c.lo[a]) wider = a;
-      if (count > 0 && wider >= 0)
+      if (wider >= 0)
         out.push_back(
-            fmt::format("Object '{}': it is {:g} across in {}, wider than the container ({:g}); {} (a mesh "
-                        "in other units? "
-                        "UniformScale scales it)",
+            fmt::format("Object '{}': its particles span {:g} in {}, more than the container's {:g}; {} (a "
+                        "mesh in other units? UniformScale scales it)",
                         info.name, hi[wider] - lo[wider] + 2 * info.particleRadius, "xyz"[wider],
                         c.hi[wider] - c.lo[wider],
                         info.dynamic ? "the walls cannot hold it, and fling it"

@@ -102,11 +102,17 @@ TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   };
   const std::vector<std::string> big = warningsOf(kBox + wide(12));
   ASSERT_EQ(big.size(), 1u);
-  EXPECT_NE(
-      big[0].find(
-          "Object 'slab': it is 12 across in x, wider than the container (10); the walls cannot hold it"),
-      std::string::npos)
+  EXPECT_NE(big[0].find("Object 'slab': its particles span 12 in x, more than the container's 10; the walls "
+                        "cannot hold it"),
+            std::string::npos)
       << big[0];
+  // Wider by less than a particle: all its particles' centres inside, their surfaces not
+  // (a review: no warning up to 10.5 wide in 10, and the box climbed and tilted).
+  const std::vector<std::string> bit = warningsOf(kBox + wide(10.4));
+  ASSERT_EQ(bit.size(), 1u);
+  EXPECT_NE(bit[0].find("Object 'slab': its particles span 10.5 in x, more than the container's 10"),
+            std::string::npos)
+      << bit[0];
   const std::vector<std::string> fits = warningsOf(kBox + wide(9.5) + object("beyond", "9 3 0", true));
   ASSERT_EQ(fits.size(), 1u) << fmt::format("{}", fmt::join(fits, "\n"));
   EXPECT_NE(fits[0].find("push the body back inside"), std::string::npos) << fits[0];
