@@ -50,8 +50,8 @@ inline constexpr std::size_t kMaxTableFloats = std::size_t{1} << 26;
 [[nodiscard]] double lengthScale(const PairFunction& f);
 
 /// How far f sampled into `intervals` pieces strays from f where its shape is, over
-/// [0, min(cutoff, 4 lengthScale(f))]: the largest difference there over the largest |f|
-/// there; 0 for a function without a length scale. A cutoff so long that the table's
+/// [0.9, 4] length scales (within the cutoff): the largest difference there over the
+/// largest |f| there; 0 for a function without a length scale. A cutoff so long that the table's
 /// pieces (kMaxIntervals at most) are as long as the length scale makes it large.
 [[nodiscard]] double samplingError(const PairFunction& f, int intervals);
 

@@ -148,7 +148,7 @@ class MeshBuilder {
         for (auto& t : mesh_.triangles) std::swap(t[1], t[2]);
         if (report != nullptr)
           report->warnings.push_back(
-              "the closed mesh's triangles all face inward (a negative volume): turned to face outward");
+              "the closed mesh's triangles face inward (its volume is negative): turned to face outward");
       }
     }
     if (report != nullptr) {

@@ -192,7 +192,7 @@ TEST(InteractionTable, LongCutoffsGetPiecesEnoughForTheirLengthScale) {
 }
 
 // samplingError against a brute-force check: the largest |sampled - exact| over
-// [0, 4 length scales] (a finer grid than the function's own), over the largest |exact|
+// [0.9, 4] length scales (a finer grid than the function's own), over the largest |exact|
 // there. Small within the table's cap, growing once the cap makes each piece longer
 // than the length scale allows; 0 for a straight line (no length scale).
 TEST(InteractionTable, SamplingErrorGrowsOnceTheCapIsReached) {
@@ -204,7 +204,7 @@ TEST(InteractionTable, SamplingErrorGrowsOnceTheCapIsReached) {
     const SampledFunction s = sample(f, n);
     double worst = 0, largest = 0;
     for (int k = 0; k < 20000; ++k) {
-      const double r = 4.0 * (k + 0.25) / 20000;
+      const double r = 0.9 + 3.1 * (k + 0.25) / 20000;
       worst = std::max(worst, std::abs(s.at(r) - evaluate(f, r)));
       largest = std::max(largest, std::abs(evaluate(f, r)));
     }
@@ -212,8 +212,8 @@ TEST(InteractionTable, SamplingErrorGrowsOnceTheCapIsReached) {
     if (rc <= 100) {
       EXPECT_LT(error, 0.005) << rc;
     }
-    if (rc >= 1e4) {
-      EXPECT_GT(error, 0.1) << rc;
+    if (rc >= 1e6) {
+      EXPECT_GT(error, 0.5) << rc;
     }
     EXPECT_GE(error, 0.9 * last) << rc;
     last = error;

@@ -415,7 +415,8 @@ TEST(LoadMesh, AClosedMeshWoundInwardAsAWholeIsTurnedOutward) {
   const TriangleMesh m = loadMesh(dir.write("inward.obj", inward), &report);
   EXPECT_NEAR(scenarios::signedVolume(m), 1.0, 1e-12);
   ASSERT_EQ(report.warnings.size(), 1u);
-  EXPECT_NE(report.warnings[0].find("all face inward"), std::string::npos) << report.warnings[0];
+  EXPECT_NE(report.warnings[0].find("face inward (its volume is negative)"), std::string::npos)
+      << report.warnings[0];
 
   // Two cubes, the inner one reversed (a cavity): volume 8 - 1.
   std::string hollow =

@@ -135,6 +135,26 @@ TEST(CompileWarnings, NamesAFunctionTooLongForItsTable) {
   EXPECT_NE(w[0].find("the force table's 262144 pieces are 3.81 long"), std::string::npos) << w[0];
 }
 
+// Fluid/object drag past what single-precision forces can balance is named; strong but
+// sane drag is not.
+TEST(CompileWarnings, NamesAFluidObjectDragPastWhatFloatsCanBalance) {
+  const auto scene = [](const char* damping) {
+    return std::string(
+               "<Fluid><Name>goo</Name><Particles>0 1.2 0</Particles></Fluid>"
+               "<Object><Name>plate</Name><Shape>box</Shape><Size>4 1 4</Size></Object>"
+               "<Interactions><FluidObject><Linear><Cutoff>1.5</Cutoff></Linear><Damping>") +
+           damping + "</Damping></FluidObject></Interactions>";
+  };
+  EXPECT_TRUE(warningsOf(scene("1e5")).empty());
+  const std::vector<std::string> w = warningsOf(scene("1e8"));
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(
+      w[0].find("the fluid/object drag on fluid 'goo' (Damping 1e+08, RelativeVelocity 2, ParticleMass 1) is "
+                "5.21e+05 times what one substep"),
+      std::string::npos)
+      << w[0];
+}
+
 // Velocities given to a static object would be dropped without a word: each such object
 // is named with its line and what is not used; a dynamic one, or a static one at rest,
 // is not.
