@@ -214,11 +214,29 @@ void RigidSolver::prepareDrag(const BodySet& set, const std::vector<BodyState>& 
   dragReady_ = true;
 }
 
+void RigidSolver::dragFluidHeld(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& s,
+                                std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                                const forces::InteractionTable& table, const Vec3& gravity, double h) {
+  if (set.empty()) return;
+  gatherDrag(set, states, s, pairs, table, materialInverseMass, gravity, h);
+  dragReady_ = false;  // set up for this kick; the next step sets up its own
+  for (const FluidDrag& fluid : fluids_) {
+    const std::uint32_t f = fluid.slot;
+    const Vec3 change =
+        fluid.inverse * fluid.step - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
+    s.vx[f] += static_cast<float>(change.x());
+    s.vy[f] += static_cast<float>(change.y());
+    s.vz[f] += static_cast<float>(change.z());
+    fluidRow_[f] = kNoRow;
+  }
+  fluids_.clear();
+}
+
 // The fluid particles' share of the implicit drag (gatherDrag): each had its explicit
 // step e_f / m added to its velocity (and, when the integrator drifts after kicking, to
 // its position over `drift`); it gets dv_f = A_f⁻¹ (e_f + dt sum_b G_fb dq_b) instead.
 void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInverseMass, double dt,
-                            double drift, double kicked) {
+                            double drift, FluidKick kick) {
   for (const FluidDrag& fluid : fluids_) {
     const std::uint32_t f = fluid.slot;
     Vec3 w = fluid.step;
@@ -226,8 +244,17 @@ void RigidSolver::dragFluid(ParticleStore& s, std::span<const float> materialInv
       const Coupling& cp = couplings_[static_cast<std::size_t>(at)];
       w += dt * (cp.g * dragStep_[cp.body]);
     }
-    const Vec3 change =
-        fluid.inverse * w - kicked * fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
+    const double inverseMass = materialInverseMass[s.material[f]];
+    Vec3 change = fluid.inverse * w - fluid.step * inverseMass;
+    if (kick == FluidKick::OpeningHalf) change += 0.5 * fluid.step * inverseMass;  // half was never given
+    if (kick == FluidKick::AfterHeldHalf) {
+      // The closing half was given explicitly, e / 2m, then corrected to A_h⁻¹ e / 2
+      // (A_h = m I + dt/2 D_f): that correction comes out too, so that the whole implicit
+      // step replaces both halves.
+      Mat3 a = 0.5 * dt * fluid.sum;
+      a.diagonal().array() += 1.0 / inverseMass;
+      change -= a.inverse() * (0.5 * fluid.step) - 0.5 * fluid.step * inverseMass;
+    }
     s.vx[f] += static_cast<float>(change.x());
     s.vy[f] += static_cast<float>(change.y());
     s.vz[f] += static_cast<float>(change.z());
@@ -1018,7 +1045,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
                        ParticleStore& s, std::span<const SlotPair> pairs,
                        std::span<const float> materialInverseMass, std::span<const float> materialRadius,
                        const forces::InteractionTable* table, const Walls* walls, const Vec3& gravity,
-                       double dt, double fluidDrift, double fluidKicked) {
+                       double dt, double fluidDrift, FluidKick fluidKick) {
   if (set.empty()) return;
   const std::size_t nb = set.bodies.size();
   // Body particles may have been moved by the fluid integrator: put them back on their
@@ -1091,7 +1118,7 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     // pallet and the pallet shook.)
     for (std::size_t b = 0; b < nb; ++b)
       if (dragged_[b]) dragStep_[b] << vel_[b] - startVel_[b], omega_[b] - startOmega_[b];
-    dragFluid(s, materialInverseMass, dt, fluidDrift, fluidKicked);
+    dragFluid(s, materialInverseMass, dt, fluidDrift, fluidKick);
   }
   for (std::size_t b = 0; b < nb; ++b) {
     const BodyInfo& info = set.bodies[b];

@@ -72,6 +72,19 @@ struct Contact {
 using SlotPair = std::array<std::uint32_t, 2>;
 
 /// Steps every body; owns its work buffers (no allocation once warmed up).
+/// How the fluid came by the kick of dt (f / m + g) that a step's drag correction
+/// replaces (RigidSolver::step): the correction must take out exactly what was given.
+enum class FluidKick {
+  /// Explicitly, whole: one merged kick, or an explicit closing half and this opening half.
+  Whole,
+  /// Only the opening half: velocity Verlet's first substep of a run, no closing kick
+  /// before it (taken as whole, a plate dragging a particle was sent backwards).
+  OpeningHalf,
+  /// A closing half taken implicitly with the bodies held (dragFluidHeld), then the
+  /// explicit opening half: velocity Verlet's first substep of every later frame.
+  AfterHeldHalf,
+};
+
 class RigidSolver {
  public:
   /// Slots of every body particle in `store` (call after each reorder of the store).
@@ -93,15 +106,12 @@ class RigidSolver {
   /// fluid particles they touch. Those particles were kicked by dt (f / m + g) before
   /// this call, with `store.f` as it still is; their velocities are corrected, and their
   /// positions by `fluidDrift` times the correction (dt where the integrator drifted them
-  /// after the kick, 0 where before). `fluidKicked`: the share of that dt kick the fluid
-  /// was given explicitly since its last correction (1; velocity Verlet's first substep
-  /// of a run, whose opening half kick follows no closing one, 0.5): the correction
-  /// replaces that much (it took the whole kick as given, and a plate moving under a
-  /// particle with strong drag was sent backwards on a run's first substep).
+  /// after the kick, 0 where before). `fluidKick`: how the fluid came by that kick since
+  /// its last correction (FluidKick).
   void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
             ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
             std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
-            const Vec3& gravity, double dt, double fluidDrift, double fluidKicked = 1.0);
+            const Vec3& gravity, double dt, double fluidDrift, FluidKick fluidKick = FluidKick::Whole);
 
   /// The fluid/body drag's implicit system (gatherDrag) set up now, for the next step():
   /// call it where the forces in `store.f` were evaluated, before the fluid is kicked and
@@ -112,6 +122,20 @@ class RigidSolver {
   void prepareDrag(const BodySet& set, const std::vector<BodyState>& states, const ParticleStore& store,
                    std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
                    const forces::InteractionTable& table, const Vec3& gravity, double dt);
+
+  /// Velocity Verlet's closing half kick by `h` at a frame's end, the bodies held (they
+  /// do not move in it): call it after the explicit kick of every fluid particle by the
+  /// forces in `store.f`. Each fluid particle within reach of a body takes its drag
+  /// implicitly, v0 + A⁻¹ e with A = m I + h D and e = h (f + m g), instead of
+  /// v0 + e / m: taken explicitly, a strong drag overshot in the written frame (a
+  /// particle written at -47 units/s while moving at +10, or at 1,879 while moving at
+  /// 2.5, and a run stopped as blown up). The next step must be told
+  /// (FluidKick::AfterHeldHalf), which takes this correction back out of its own: that
+  /// step works it out again from the same positions and forces, so a checkpoint at the
+  /// frame's end needs nothing more.
+  void dragFluidHeld(const BodySet& set, const std::vector<BodyState>& states, ParticleStore& store,
+                     std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                     const forces::InteractionTable& table, const Vec3& gravity, double h);
 
   /// The contacts of the last step (tests, diagnostics).
   [[nodiscard]] std::span<const Contact> contacts() const { return contacts_; }
@@ -130,7 +154,7 @@ class RigidSolver {
   /// The fluid particles' side: each one's velocity (and position, by `drift` times the
   /// change) from its explicit step to the implicit one, with the bodies' solved dq.
   void dragFluid(ParticleStore& store, std::span<const float> materialInverseMass, double dt, double drift,
-                 double kicked);
+                 FluidKick kick);
   void collectContacts(const BodySet& set, const ParticleStore& store, std::span<const SlotPair> pairs,
                        const Walls* walls, double dt);
   /// Contact c between slot i of body a and slot j of body b (d = x_i - x_j, r = |d|,

@@ -286,13 +286,13 @@ void Simulation::prepareBodies() {
                      model_.table, model_.gravity, this->dt());
 }
 
-void Simulation::stepBodies(double dt, double fluidKicked) {
+void Simulation::stepBodies(double dt, rigid::FluidKick fluidKick) {
   if (model_.bodies.empty()) return;
   rigid_.step(
       model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_, materialInverseMass_,
       materialRadius_, &model_.table, model_.container ? &*model_.container : nullptr, model_.gravity, dt,
       model_.integrator == Integrator::ExplicitEuler ? 0.0 : dt,  // explicit Euler drifts before kicking
-      fluidKicked);
+      fluidKick);
 }
 
 namespace {
@@ -638,10 +638,13 @@ void Simulation::step() {
       // frame's last substep closes with its half kick, so velocities are at whole steps
       // wherever a frame ends (caches, energies, checkpoints, --adaptive).
       const float opening = kickOwed_ ? dt : 0.5f * dt;
-      // The explicit kick since the fluid's last drag correction: a whole dt (the last
-      // substep's closing half and this one's opening half, or one merged kick), but
-      // only the opening half on a run's first substep.
-      const double kicked = kickOwed_ || state_.frame > 0 ? 1.0 : 0.5;
+      // How the fluid came by this substep's kick of dt since its last drag correction:
+      // one merged kick inside a frame; at a frame's start the closing half (taken with
+      // the drag implicit, closingKick) and this opening half; on a run's first substep
+      // the opening half alone.
+      const rigid::FluidKick kicked = kickOwed_          ? rigid::FluidKick::Whole
+                                      : state_.frame > 0 ? rigid::FluidKick::AfterHeldHalf
+                                                         : rigid::FluidKick::OpeningHalf;
       const bool closes = substepInFrame_ + 1 >= substeps_;
       ++substepInFrame_;
       if (fused) {
@@ -655,7 +658,7 @@ void Simulation::step() {
       }
       computeForces();
       kickOwed_ = !closes;
-      if (closes) kick(0.5f * dt);
+      if (closes) closingKick();
       if (closes || !fused) checkFinite();
       return;
     }
@@ -680,8 +683,19 @@ void Simulation::advanceFrame() {
 
 void Simulation::levelVelocities() {
   if (!kickOwed_) return;
-  kick(0.5f * static_cast<float>(dt()));  // with the forces of the last substep's positions
+  closingKick();  // with the forces of the last substep's positions
   kickOwed_ = false;
+}
+
+// Velocity Verlet's closing half kick, the bodies held: the fluid's drag near bodies
+// implicitly (RigidSolver::dragFluidHeld), which the next frame's first substep takes
+// back out of its own correction (FluidKick::AfterHeldHalf).
+void Simulation::closingKick() {
+  const float h = 0.5f * static_cast<float>(dt());
+  kick(h);
+  if (!model_.bodies.empty())
+    rigid_.dragFluidHeld(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
+                         model_.table, model_.gravity, 0.5 * this->dt());
 }
 
 void Simulation::finishFrame() {

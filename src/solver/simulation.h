@@ -148,7 +148,8 @@ class Simulation {
   /// The bodies' implicit drag set up at the positions the forces were evaluated at
   /// (rigid::RigidSolver::prepareDrag), before the fluid moves.
   void prepareBodies();
-  void stepBodies(double dt, double fluidKicked = 1.0);
+  void stepBodies(double dt, rigid::FluidKick fluidKick = rigid::FluidKick::Whole);
+  void closingKick();
   void listRigidPairs();
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
   [[noreturn]] void reportBlowUp() const;
