@@ -71,7 +71,6 @@ struct Contact {
 /// different owners.
 using SlotPair = std::array<std::uint32_t, 2>;
 
-/// Steps every body; owns its work buffers (no allocation once warmed up).
 /// How the fluid came by the kick of dt (f / m + g) that a step's drag correction
 /// replaces (RigidSolver::step): the correction must take out exactly what was given.
 enum class FluidKick {
@@ -85,6 +84,7 @@ enum class FluidKick {
   AfterHeldHalf,
 };
 
+/// Steps every body; owns its work buffers (no allocation once warmed up).
 class RigidSolver {
  public:
   /// Slots of every body particle in `store` (call after each reorder of the store).
