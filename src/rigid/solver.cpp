@@ -1043,9 +1043,9 @@ bool RigidSolver::pushFluidOut(const BodySet& set, std::vector<BodyState>& state
 
 void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
                        ParticleStore& s, std::span<const SlotPair> pairs,
-                       std::span<const float> materialInverseMass, std::span<const float> materialRadius,
-                       const forces::InteractionTable* table, const Walls* walls, const Vec3& gravity,
-                       double dt, double fluidDrift, FluidKick fluidKick) {
+                       std::span<const float> materialInverseMass, const forces::InteractionTable* table,
+                       const Walls* walls, const Vec3& gravity, double dt, double fluidDrift,
+                       FluidKick fluidKick) {
   if (set.empty()) return;
   const std::size_t nb = set.bodies.size();
   // Body particles may have been moved by the fluid integrator: put them back on their
@@ -1137,9 +1137,18 @@ void RigidSolver::step(const BodySet& set, std::vector<BodyState>& states, std::
     }
     integratePose(info, st, vel_[b] + pseudoVel_[b], pseudoOmega_[b], dt);
   }
-  // New poses: body particles to their places (which also sets omega_ from the new
-  // pose), then fluid kept outside the bodies.
+  // New poses: body particles to their places. The fluid is kept outside the bodies
+  // after the container's walls have acted (keepFluidOut).
   writeParticles(set, states, s);
+}
+
+void RigidSolver::keepFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& s,
+                               std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                               std::span<const float> materialRadius) {
+  if (set.empty()) return;
+  const std::size_t nb = set.bodies.size();
+  // The bodies' velocities and world inertia at their new poses (omega_ was set from them
+  // when step() put their particles in place).
   for (std::size_t b = 0; b < nb; ++b) {
     if (!set.bodies[b].dynamic) continue;
     vel_[b] = states[b].velocity;

@@ -96,10 +96,9 @@ class RigidSolver {
 
   /// One substep of length dt for every body. `store.f` must hold the forces at the
   /// bodies' current poses; `pairs` lists (at least) every pair of particles within
-  /// contact distance that involves a body; `fluidInverseMass` and `fluidRadius` give,
-  /// per material, the mass and radius of fluid particles. Fluid particles found inside
-  /// a body are put back on its surface and lose their approaching velocity (the body
-  /// takes the opposite impulse). `memory` holds the contact impulses of the last
+  /// contact distance that involves a body; `materialInverseMass` gives, per material,
+  /// the inverse mass of fluid particles. Fluid that ends inside a body is put out by
+  /// keepFluidOut, called after the container's walls. `memory` holds the contact impulses of the last
   /// substep, which this one starts from, and receives this substep's (State::contacts).
   /// `table` (may be null) gives the fluid/object pairs' velocity terms, whose drag is
   /// taken implicitly on both sides: the bodies' free motion and the velocities of the
@@ -110,8 +109,18 @@ class RigidSolver {
   /// its last correction (FluidKick).
   void step(const BodySet& set, std::vector<BodyState>& states, std::vector<ContactMemory>& memory,
             ParticleStore& store, std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
-            std::span<const float> materialRadius, const forces::InteractionTable* table, const Walls* walls,
-            const Vec3& gravity, double dt, double fluidDrift, FluidKick fluidKick = FluidKick::Whole);
+            const forces::InteractionTable* table, const Walls* walls, const Vec3& gravity, double dt,
+            double fluidDrift, FluidKick fluidKick = FluidKick::Whole);
+
+  /// After step() and the container's walls: fluid particles that came within a body
+  /// are put back on its surface and lose their approaching velocity (the body takes the
+  /// opposite impulse). Last, so that neither the walls nor anything else leaves fluid in
+  /// a body: with the walls after it, fluid squeezed between a heavy box and the floor was
+  /// put back up into the box (a box of mass 2,000 landing on a puddle kept 17 particles
+  /// in its hollow middle). The walls come after step() for the drag (RigidSolver::step).
+  void keepFluidOut(const BodySet& set, std::vector<BodyState>& states, ParticleStore& store,
+                    std::span<const SlotPair> pairs, std::span<const float> materialInverseMass,
+                    std::span<const float> materialRadius);
 
   /// The fluid/body drag's implicit system (gatherDrag) set up now, for the next step():
   /// call it where the forces in `store.f` were evaluated, before the fluid is kicked and

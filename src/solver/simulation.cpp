@@ -290,9 +290,15 @@ void Simulation::stepBodies(double dt, rigid::FluidKick fluidKick) {
   if (model_.bodies.empty()) return;
   rigid_.step(
       model_.bodies, state_.bodies, state_.contacts, state_.particles, rigidPairs_, materialInverseMass_,
-      materialRadius_, &model_.table, model_.container ? &*model_.container : nullptr, model_.gravity, dt,
+      &model_.table, model_.container ? &*model_.container : nullptr, model_.gravity, dt,
       model_.integrator == Integrator::ExplicitEuler ? 0.0 : dt,  // explicit Euler drifts before kicking
       fluidKick);
+}
+
+void Simulation::keepFluidOutOfBodies() {
+  if (model_.bodies.empty()) return;
+  rigid_.keepFluidOut(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
+                      materialRadius_);
 }
 
 namespace {
@@ -624,11 +630,12 @@ void Simulation::step() {
         kick(dt);
         drift(dt);  // with v_{n+1}
       }
-      // The walls last: the bodies' step corrects the fluid's explicit drag by a change
-      // of velocity (RigidSolver::dragFluid), which a wall's bounce in between turned
-      // into a fling.
+      // The walls after the bodies' step, which corrects the fluid's explicit drag by a
+      // change of velocity (RigidSolver::dragFluid): a wall's bounce in between turned
+      // that change into a fling. Then the fluid is kept out of the bodies.
       stepBodies(this->dt());
       applyWalls();
+      keepFluidOutOfBodies();
       break;
     }
     case Integrator::VelocityVerlet: {
@@ -654,7 +661,8 @@ void Simulation::step() {
         kick(opening);
         drift(dt);
         stepBodies(this->dt(), kicked);
-        applyWalls();  // last, as above
+        applyWalls();  // as above
+        keepFluidOutOfBodies();
       }
       computeForces();
       kickOwed_ = !closes;

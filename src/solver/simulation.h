@@ -150,6 +150,7 @@ class Simulation {
   void prepareBodies();
   void stepBodies(double dt, rigid::FluidKick fluidKick = rigid::FluidKick::Whole);
   void closingKick();
+  void keepFluidOutOfBodies();
   void listRigidPairs();
   [[nodiscard]] std::string entityName(std::uint32_t owner) const;
   [[noreturn]] void reportBlowUp() const;

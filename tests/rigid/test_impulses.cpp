@@ -46,7 +46,7 @@ struct TwoBodies {
     solver.writeParticles(set, states, store);
     std::vector<SlotPair> pairs{{0, 1}};
     const std::vector<float> none;
-    solver.step(set, states, memory, store, pairs, none, none, nullptr, nullptr, Vec3::Zero(), dt, dt);
+    solver.step(set, states, memory, store, pairs, none, nullptr, nullptr, Vec3::Zero(), dt, dt);
   }
 };
 
