@@ -101,7 +101,7 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
                         "mesh in other units? UniformScale scales it)",
                         info.name, hi[wider] - lo[wider] + 2 * info.particleRadius, "xyz"[wider],
                         c.hi[wider] - c.lo[wider],
-                        info.dynamic ? "the walls cannot hold it, and fling it"
+                        info.dynamic ? "the walls push it in with a jolt, turning a long body or flinging it"
                                      : "the fluids cannot reach the part outside"));
       else if (count > 0)
         out.push_back(fmt::format(
@@ -200,30 +200,33 @@ std::vector<std::string> samplingWarnings(const SceneDesc& d, const solver::Mode
   return out;
 }
 
-// Fluid/object drag so strong that one pair's rate, (Damping + RelativeVelocity) dt / m,
-// passes 1e4: the drag is implicit, but the forces it is corrected from are single
-// precision, and their rounding then outweighs the balance (Damping 1e8 on a particle of
-// mass 1 made a plate and the particle on it gain momentum: 40 -> 1,056; a review). Any
+// Fluid/object drag so strong that one pair's rate, (Damping + RelativeVelocity) dt / m
+// with m the lighter of the fluid particle and a dynamic object, passes 1e4: the drag is implicit, but the
+// forces it is corrected from are single precision, and their rounding then outweighs the balance (Damping
+// 1e8 on a particle of mass 1 made a plate and the particle on it gain momentum: 40 -> 1,056; a review). Any
 // rate past 1 already stops the fluid against the object within a substep.
 std::vector<std::string> dragWarnings(const SceneDesc& d, const solver::Model& m) {
   std::vector<std::string> out;
-  const std::size_t nf = d.fluids.size(), rows = m.table.materials();
   const double dt = m.dt();
-  for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t r = nf; r < rows; ++r) {
-      const forces::Interaction& in = m.table.interaction(f, r);
-      const double mass = d.fluids[f].params.particleMass;
+  for (const FluidDesc& fluid : d.fluids)
+    for (const ObjectDesc& o : d.objects) {
+      const PairDesc* pair = findPair(d.interactions, fluid.name, o.name);
+      const InteractionDesc& in = pair ? pair->interaction : d.interactions.fluidObject;
+      // The lighter side decides: a light body under a heavy particle loses the balance
+      // as soon (a plate of mass 0.01 under a particle of mass 1, Damping 1e5: +54%).
+      const double mass =
+          o.isDynamic ? std::min(fluid.params.particleMass, o.mass) : fluid.params.particleMass;
       const double rate = (in.damping + in.relativeVelocity) * dt / mass;
       if (!(rate > 1e4)) continue;
       out.push_back(fmt::format(
-          "Interactions: the fluid/object drag on fluid '{}' (Damping {:g}, RelativeVelocity {:g}, "
-          "ParticleMass "
-          "{:g}) is {:.3g} times what one substep of {:.3g} s can follow, for each object particle it "
-          "touches: past "
-          "about 10,000 the single-precision forces lose the drag's balance and create momentum; any value "
-          "above "
-          "{:.3g} (ParticleMass / dt) already stops the fluid against the object within a substep",
-          d.fluids[f].name, in.damping, in.relativeVelocity, mass, rate, dt, mass / dt));
+          "Interactions: the fluid/object drag between fluid '{}' and object '{}' (Damping {:g}, "
+          "RelativeVelocity "
+          "{:g}; the lighter mass {:g}) is {:.3g} times what one substep of {:.3g} s can follow, for each "
+          "pair of "
+          "particles: past about 10,000 the single-precision forces lose the drag's balance and create "
+          "momentum; "
+          "any value above {:.3g} (that mass / dt) already stops the two together within a substep",
+          fluid.name, o.name, in.damping, in.relativeVelocity, mass, rate, dt, mass / dt));
       break;  // one warning a fluid
     }
   return out;

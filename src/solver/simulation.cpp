@@ -701,9 +701,9 @@ void Simulation::levelVelocities() {
 void Simulation::closingKick() {
   const float h = 0.5f * static_cast<float>(dt());
   kick(h);
-  if (!model_.bodies.empty())
-    rigid_.dragFluidHeld(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
-                         model_.table, model_.gravity, 0.5 * this->dt());
+  if (model_.bodies.empty()) return;
+  rigid_.dragFluidHeld(model_.bodies, state_.bodies, state_.particles, rigidPairs_, materialInverseMass_,
+                       model_.table, model_.gravity, 0.5 * this->dt());
 }
 
 void Simulation::finishFrame() {
