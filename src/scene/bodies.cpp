@@ -479,14 +479,23 @@ void addBodies(const SceneDesc& desc, ObjectShapes&& shapes, solver::Model& m, s
       for (std::size_t i = 0; i < set.firstId; ++i)
         if (solids.back()->depth(Vec3(store.px[i], store.py[i], store.pz[i])) > 0)
           ++inside[store.material[i]];
-      for (std::size_t f = 0; f < nf; ++f)
-        if (inside[f] > 0)
-          warnings->push_back(fmt::format(
-              "Object '{}' (line {}): {} particle(s) of fluid '{}' start inside it: a body is hollow behind "
-              "its two outer layers of particles, so fluid inside it stays there; give the fluid's fills "
-              "<OutsideObjects>true</OutsideObjects> to leave out their points inside objects, or move the "
-              "fill or the object so that they do not overlap",
-              od.name, od.line, inside[f], desc.fluids[f].name));
+      for (std::size_t f = 0; f < nf; ++f) {
+        if (inside[f] == 0) continue;
+        // Fills with OutsideObjects leave nothing inside: the rest came from fills without
+        // it or from explicit positions, which are never left out.
+        const std::vector<FillDesc>& fills = desc.fluids[f].fills;
+        const bool uncarved = std::any_of(fills.begin(), fills.end(),
+                                          [](const FillDesc& fill) { return !fill.outsideObjects; });
+        warnings->push_back(fmt::format(
+            "Object '{}' (line {}): {} particle(s) of fluid '{}' start inside it: a body is hollow behind "
+            "its two "
+            "outer layers of particles, so fluid inside it stays there; {}",
+            od.name, od.line, inside[f], desc.fluids[f].name,
+            uncarved
+                ? "give the fluid's fills <OutsideObjects>true</OutsideObjects> to leave out their points "
+                  "inside objects, or move the fill or the object so that they do not overlap"
+                : "they are explicit positions, which are never left out: move them or the object"));
+      }
     }
     set.bodies.push_back(std::move(info));
     state.bodies.push_back(p.state);

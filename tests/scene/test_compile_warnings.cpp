@@ -354,6 +354,34 @@ TEST(CompileFills, OutsideObjectsFollowsALatticeCentredInItsBox) {
   for (const std::string& w : c.warnings) EXPECT_EQ(w.find("start inside it"), std::string::npos) << w;
 }
 
+// The "start inside it" advice fits where the particles came from: a fill without
+// OutsideObjects is told to use it; explicit positions alone (every fill carved) are told
+// they are never left out.
+TEST(CompileFills, TheStartInsideAdviceFitsTheParticlesSource) {
+  const std::string crate =
+      "<Object><Name>crate</Name><Shape>box</Shape><Size>4 4 4</Size><InitialPosition>0 2 "
+      "0</InitialPosition></Object>";
+  const std::string carved =
+      "<Fill><Shape>box</Shape><Min>-3 0 -3</Min><Max>3 1 3</Max><Spacing>1</Spacing>"
+      "<OutsideObjects>true</OutsideObjects></Fill>";
+  const auto insideWarnings = [](const std::vector<std::string>& all) {
+    std::vector<std::string> out;
+    for (const std::string& w : all)
+      if (w.find("start inside it") != std::string::npos) out.push_back(w);
+    return out;
+  };
+  const std::vector<std::string> explicitOnly = insideWarnings(
+      warningsOf("<Fluid><Name>goo</Name><Particles>0 2 0</Particles>" + carved + "</Fluid>\n" + crate));
+  ASSERT_EQ(explicitOnly.size(), 1u) << fmt::format("{}", fmt::join(explicitOnly, "\n"));
+  EXPECT_NE(explicitOnly[0].find("they are explicit positions, which are never left out"), std::string::npos)
+      << explicitOnly[0];
+  const std::vector<std::string> plain = insideWarnings(
+      warningsOf("<Fluid><Name>goo</Name>" + fill("-1 1 -1", "1 3 1") + carved + "</Fluid>\n" + crate));
+  ASSERT_EQ(plain.size(), 1u) << fmt::format("{}", fmt::join(plain, "\n"));
+  EXPECT_NE(plain[0].find("give the fluid's fills <OutsideObjects>true</OutsideObjects>"), std::string::npos)
+      << plain[0];
+}
+
 // A fill whose every point lies inside an object adds nothing: a warning names it, and a
 // fluid left with no particle at all is an error at its line.
 TEST(CompileFills, AFillLeftEmptyByOutsideObjectsIsNamed) {
