@@ -28,6 +28,17 @@ std::string fill(const std::string& min, const std::string& max) {
   return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max + "</Max><Spacing>1</Spacing></Fill>";
 }
 
+// The same as fill() with OutsideObjects.
+std::string carvedFill(const std::string& min, const std::string& max) {
+  return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max +
+         "</Max><Spacing>1</Spacing><OutsideObjects>true</OutsideObjects></Fill>";
+}
+
+// A dynamic 4 x 4 x 4 box standing on the floor at the origin.
+const std::string kCrate =
+    "<Object><Name>crate</Name><Shape>box</Shape><Size>4 4 4</Size><InitialPosition>0 2 "
+    "0</InitialPosition></Object>";
+
 std::vector<std::string> warningsOf(const std::string& body) {
   return compile(readSceneText(sceneWith(body), "t.scene")).warnings;
 }
@@ -247,10 +258,6 @@ TEST(CompileWarnings, CountsTheFluidParticlesThatStartInsideAnObject) {
 TEST(CompileFills, OutsideObjectsLeavesOutThePointsInsideObjects) {
   const Vec3 centre(0.25, 2.25, 0.1), ball(-2, 2, 2);
   const double radius = 1.3, fluidRadius = 0.2;
-  const auto carvedFill = [](const std::string& min, const std::string& max) {
-    return "<Fill><Shape>box</Shape><Min>" + min + "</Min><Max>" + max +
-           "</Max><Spacing>1</Spacing><OutsideObjects>true</OutsideObjects></Fill>";
-  };
   for (const double turn : {0.0, 30.0, 45.0}) {
     SCOPED_TRACE(turn);
     const std::string text = sceneWith(
@@ -358,12 +365,7 @@ TEST(CompileFills, OutsideObjectsFollowsALatticeCentredInItsBox) {
 // OutsideObjects is told to use it; explicit positions alone (every fill carved) are told
 // they are never left out.
 TEST(CompileFills, TheStartInsideAdviceFitsTheParticlesSource) {
-  const std::string crate =
-      "<Object><Name>crate</Name><Shape>box</Shape><Size>4 4 4</Size><InitialPosition>0 2 "
-      "0</InitialPosition></Object>";
-  const std::string carved =
-      "<Fill><Shape>box</Shape><Min>-3 0 -3</Min><Max>3 1 3</Max><Spacing>1</Spacing>"
-      "<OutsideObjects>true</OutsideObjects></Fill>";
+  const std::string carved = carvedFill("-3 0 -3", "3 1 3");
   const auto insideWarnings = [](const std::vector<std::string>& all) {
     std::vector<std::string> out;
     for (const std::string& w : all)
@@ -371,12 +373,12 @@ TEST(CompileFills, TheStartInsideAdviceFitsTheParticlesSource) {
     return out;
   };
   const std::vector<std::string> explicitOnly = insideWarnings(
-      warningsOf("<Fluid><Name>goo</Name><Particles>0 2 0</Particles>" + carved + "</Fluid>\n" + crate));
+      warningsOf("<Fluid><Name>goo</Name><Particles>0 2 0</Particles>" + carved + "</Fluid>\n" + kCrate));
   ASSERT_EQ(explicitOnly.size(), 1u) << fmt::format("{}", fmt::join(explicitOnly, "\n"));
   EXPECT_NE(explicitOnly[0].find("they are explicit positions, which are never left out"), std::string::npos)
       << explicitOnly[0];
   const std::vector<std::string> plain = insideWarnings(
-      warningsOf("<Fluid><Name>goo</Name>" + fill("-1 1 -1", "1 3 1") + carved + "</Fluid>\n" + crate));
+      warningsOf("<Fluid><Name>goo</Name>" + fill("-1 1 -1", "1 3 1") + carved + "</Fluid>\n" + kCrate));
   ASSERT_EQ(plain.size(), 1u) << fmt::format("{}", fmt::join(plain, "\n"));
   EXPECT_NE(plain[0].find("give the fluid's fills <OutsideObjects>true</OutsideObjects>"), std::string::npos)
       << plain[0];
@@ -385,12 +387,8 @@ TEST(CompileFills, TheStartInsideAdviceFitsTheParticlesSource) {
 // A fill whose every point lies inside an object adds nothing: a warning names it, and a
 // fluid left with no particle at all is an error at its line.
 TEST(CompileFills, AFillLeftEmptyByOutsideObjectsIsNamed) {
-  const std::string crate =
-      "<Object><Name>crate</Name><Shape>box</Shape><Size>4 4 4</Size><InitialPosition>0 2 0</InitialPosition>"
-      "</Object>";
-  const std::string inner =
-      "<Fill><Shape>box</Shape><Min>-1 1 -1</Min><Max>1 3 1</Max><Spacing>1</Spacing>"
-      "<OutsideObjects>true</OutsideObjects></Fill>";
+  const std::string crate = kCrate;
+  const std::string inner = carvedFill("-1 1 -1", "1 3 1");
   const std::vector<std::string> w =
       warningsOf("<Fluid><Name>goo</Name>" + fill("6 0 6", "7 1 7") + inner + "</Fluid>\n" + crate);
   ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
