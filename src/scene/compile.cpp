@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/error.h"
 #include "geometry/fill.h"
@@ -170,11 +171,18 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
 // that the table, at its cap of pieces, no longer follows their shape: an
 // InteractionDistance of 1e6 made a fluid repel where it attracts (a black-box review).
 // Each distinct function once; named by the first pair of rows that uses it.
-std::vector<std::string> samplingWarnings(const SceneDesc& d, const solver::Model& m) {
+std::vector<std::string> samplingWarnings(const SceneDesc& d, const solver::Model& m,
+                                          const ParticleStore& store) {
   std::vector<std::string> out;
   const std::size_t rows = m.table.materials(), nf = d.fluids.size();
+  // A body row is named by its objects (objects with the same interactions share one).
   const auto rowName = [&](std::size_t r) {
-    return r < nf ? fmt::format("fluid '{}'", d.fluids[r].name) : std::string("the objects");
+    if (r < nf) return fmt::format("fluid '{}'", d.fluids[r].name);
+    std::vector<std::string> names;
+    for (const rigid::BodyInfo& b : m.bodies.bodies)
+      if (b.count > 0 && b.firstId < store.size() && store.material[b.firstId] == r)
+        names.push_back(fmt::format("'{}'", b.name));
+    return fmt::format("object{} {}", names.size() == 1 ? "" : "s", fmt::join(names, ", "));
   };
   std::vector<forces::PairFunction> seen;
   for (std::size_t a = 0; a < rows; ++a)
@@ -442,7 +450,7 @@ Compiled compile(const SceneDesc& desc) {
   for (std::string& w : carved) out.warnings.push_back(std::move(w));
   for (std::string& w : defaultInteractionWarnings(desc, m)) out.warnings.push_back(std::move(w));
   for (std::string& w : staticObjectWarnings(desc)) out.warnings.push_back(std::move(w));
-  for (std::string& w : samplingWarnings(desc, m)) out.warnings.push_back(std::move(w));
+  for (std::string& w : samplingWarnings(desc, m, store)) out.warnings.push_back(std::move(w));
   for (std::string& w : dragWarnings(desc, m)) out.warnings.push_back(std::move(w));
   return out;
 }

@@ -144,6 +144,18 @@ TEST(CompileWarnings, NamesAFunctionTooLongForItsTable) {
             std::string::npos)
       << w[0];
   EXPECT_NE(w[0].find("the force table's 262144 pieces are 3.81 long"), std::string::npos) << w[0];
+  // A <Pair> with an object names the object (it said "the objects").
+  const std::vector<std::string> pair =
+      warningsOf("<Fluid><Name>goo</Name>" + fill("-2 1 -2", "2 5 2") +
+                 "</Fluid><Object><Name>post</Name><Shape>box</Shape><Size>1 1 1</Size><InitialPosition>0 8 "
+                 "0</InitialPosition>"
+                 "</Object><Interactions><Pair><A>goo</A><B>post</B><LennardJones><Cutoff>1e6</Cutoff></"
+                 "LennardJones></Pair>"
+                 "</Interactions>");
+  ASSERT_EQ(pair.size(), 1u) << fmt::format("{}", fmt::join(pair, "\n"));
+  EXPECT_NE(pair[0].find("Interactions: the function between fluid 'goo' and object 'post' reaches 1e+06"),
+            std::string::npos)
+      << pair[0];
 }
 
 // Fluid/object drag past what single-precision forces can balance is named; strong but
