@@ -220,16 +220,9 @@ void RigidSolver::dragFluidHeld(const BodySet& set, const std::vector<BodyState>
   if (set.empty()) return;
   gatherDrag(set, states, s, pairs, table, materialInverseMass, gravity, h);
   dragReady_ = false;  // set up for this kick; the next step sets up its own
-  for (const FluidDrag& fluid : fluids_) {
-    const std::uint32_t f = fluid.slot;
-    const Vec3 change =
-        fluid.inverse * fluid.step - fluid.step * static_cast<double>(materialInverseMass[s.material[f]]);
-    s.vx[f] += static_cast<float>(change.x());
-    s.vy[f] += static_cast<float>(change.y());
-    s.vz[f] += static_cast<float>(change.z());
-    fluidRow_[f] = kNoRow;
-  }
-  fluids_.clear();
+  // The fluid's side of the drag with every body held: no body moved (dq = 0), nothing drifts.
+  dragStep_.assign(set.bodies.size(), Eigen::Matrix<double, 6, 1>::Zero());
+  dragFluid(s, materialInverseMass, h, 0.0, FluidKick::Whole);
 }
 
 // The fluid particles' share of the implicit drag (gatherDrag): each had its explicit

@@ -180,6 +180,14 @@ geometry::TriangleMesh objectMesh(const ObjectDesc& o, const std::string& baseDi
 
 namespace {
 
+// A hash key of integer cell coordinates, 21 bits each: unique over [0, 2^21) a side (a
+// body's voxels); cells farther apart may share one (the object particles' cells, whose
+// map holds the positions, compared one by one).
+std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto part = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
+  return part(x) << 42 | part(y) << 21 | part(z);
+}
+
 // A closed body's volume fill (voxel centres lo + (k + 0.5) spacing, in the scaled
 // mesh's axes) placed at `position` turned by `rotation` (a mesh point x lies at
 // position + rotation x): which points of the world lie in it.
@@ -199,7 +207,7 @@ class PlacedSolid {
     voxels_.reserve(solid.size());
     for (const Vec3& p : solid) {
       const Vec3 k = ((p - lo) / spacing).array() - 0.5;
-      voxels_.insert(key(std::llround(k.x()), std::llround(k.y()), std::llround(k.z())));
+      voxels_.insert(cellKey(std::llround(k.x()), std::llround(k.y()), std::llround(k.z())));
       hi_ = hi_.cwiseMax(p);
     }
     hi_.array() += 0.5 * spacing;
@@ -230,12 +238,8 @@ class PlacedSolid {
     for (const Vec3& p : points) lo = lo.cwiseMin(p);
     return lo.array() - 0.5 * spacing;
   }
-  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    return static_cast<std::uint64_t>(x) << 42 | static_cast<std::uint64_t>(y) << 21 |
-           static_cast<std::uint64_t>(z);
-  }
   [[nodiscard]] bool in(std::int64_t x, std::int64_t y, std::int64_t z) const {
-    return x >= 0 && y >= 0 && z >= 0 && voxels_.count(key(x, y, z)) != 0;
+    return x >= 0 && y >= 0 && z >= 0 && voxels_.count(cellKey(x, y, z)) != 0;
   }
   std::unordered_set<std::uint64_t> voxels_;
   Vec3 lo_, hi_;
@@ -344,10 +348,6 @@ ObjectShapes::ObjectShapes(ObjectShapes&&) noexcept = default;
 struct ObjectShapes::Particles {
   double cell = 1, largest = 0;  // cell size; the largest particle radius
   std::unordered_map<std::uint64_t, std::vector<std::pair<Vec3, double>>> cells;  // position, radius
-  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto part = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
-    return part(x) << 42 | part(y) << 21 | part(z);
-  }
 };
 
 const ObjectShapes::Particles& ObjectShapes::particles() const {
@@ -361,8 +361,8 @@ const ObjectShapes::Particles& ObjectShapes::particles() const {
     for (const Vec3& q : o.points) {
       const Vec3 w = o.state.position + r * (q - o.mass.center);
       const Vec3 c = (w / out.cell).array().floor();
-      out.cells[Particles::key(static_cast<std::int64_t>(c.x()), static_cast<std::int64_t>(c.y()),
-                               static_cast<std::int64_t>(c.z()))]
+      out.cells[cellKey(static_cast<std::int64_t>(c.x()), static_cast<std::int64_t>(c.y()),
+                        static_cast<std::int64_t>(c.z()))]
           .emplace_back(w, 0.5 * o.spacing);
     }
   }
@@ -383,7 +383,7 @@ bool ObjectShapes::inside(const Vec3& p, double radius) const {
   for (std::int64_t x = cx - span; x <= cx + span; ++x)
     for (std::int64_t y = cy - span; y <= cy + span; ++y)
       for (std::int64_t z = cz - span; z <= cz + span; ++z) {
-        const auto found = ps.cells.find(Particles::key(x, y, z));
+        const auto found = ps.cells.find(cellKey(x, y, z));
         if (found == ps.cells.end()) continue;
         for (const auto& [q, r] : found->second)
           if ((q - p).squaredNorm() < (radius + r) * (radius + r)) return true;

@@ -165,8 +165,6 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
   return out;
 }
 
-// A static object never moves: initial velocities given to one would be dropped without
-// a word.
 // Functions whose cutoff is so many times their own length scale (FiniteDistance, sigma)
 // that the table, at its cap of pieces, no longer follows their shape: an
 // InteractionDistance of 1e6 made a fluid repel where it attracts (a black-box review).
@@ -209,10 +207,11 @@ std::vector<std::string> samplingWarnings(const SceneDesc& d, const solver::Mode
 }
 
 // Fluid/object drag so strong that one pair's rate, (Damping + RelativeVelocity) dt / m
-// with m the lighter of the fluid particle and a dynamic object, passes 1e4: the drag is implicit, but the
-// forces it is corrected from are single precision, and their rounding then outweighs the balance (Damping
-// 1e8 on a particle of mass 1 made a plate and the particle on it gain momentum: 40 -> 1,056; a review). Any
-// rate past 1 already stops the fluid against the object within a substep.
+// with m the lighter of the fluid particle and a dynamic object, passes 1e4: the drag is
+// implicit, but the forces it is corrected from are single precision, and their rounding
+// then outweighs the balance (Damping 1e8 on a particle of mass 1 made a plate and the
+// particle on it gain momentum: 40 -> 1,056; a review). Any rate past 1 already stops the
+// fluid against the object within a substep.
 std::vector<std::string> dragWarnings(const SceneDesc& d, const solver::Model& m) {
   std::vector<std::string> out;
   const double dt = m.dt();
@@ -228,18 +227,18 @@ std::vector<std::string> dragWarnings(const SceneDesc& d, const solver::Model& m
       if (!(rate > 1e4)) continue;
       out.push_back(fmt::format(
           "Interactions: the fluid/object drag between fluid '{}' and object '{}' (Damping {:g}, "
-          "RelativeVelocity "
-          "{:g}; the lighter mass {:g}) is {:.3g} times what one substep of {:.3g} s can follow, for each "
-          "pair of "
-          "particles: past about 10,000 the single-precision forces lose the drag's balance and create "
-          "momentum; "
-          "any value above {:.3g} (that mass / dt) already stops the two together within a substep",
+          "RelativeVelocity {:g}; the lighter mass {:g}) is {:.3g} times what one substep of {:.3g} s can "
+          "follow, for each pair of particles: past about 10,000 the single-precision forces lose the drag's "
+          "balance and create momentum; any value above {:.3g} (that mass / dt) already stops the two "
+          "together within a substep",
           fluid.name, o.name, in.damping, in.relativeVelocity, mass, rate, dt, mass / dt));
       break;  // one warning a fluid
     }
   return out;
 }
 
+// A static object never moves: initial velocities given to one would be dropped without
+// a word.
 std::vector<std::string> staticObjectWarnings(const SceneDesc& d) {
   std::vector<std::string> out;
   for (const ObjectDesc& o : d.objects) {
