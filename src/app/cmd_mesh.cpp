@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "number_checks.h"
 #include "progress.h"
+#include "render_playback.h"
 #include "run_journal.h"
 #include "session/playback.h"
 #include "surface/surface_writer.h"
@@ -65,18 +66,13 @@ int meshCommand(const MeshOptions& o) {
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 
   const bool chatty = stderrIsTerminal() && !o.quiet;
-  if (chatty && !playback.sceneNote().empty()) fmt::print(stderr, "note: {}\n", playback.sceneNote());
-  if (chatty)
-    for (const std::string& note : playback.notes()) fmt::print(stderr, "note: {}\n", note);
   // The sizes decide the surfaces (a surface of ParticleSize 1 around particles of 0.3
-  // encloses 14 times their volume): a warning, also where stderr is not a terminal.
-  if (!o.quiet && !playback.scene())
-    fmt::print(stderr,
-               "warning: no usable scene file at {}: every fluid is meshed at ParticleSize 1 (give the scene "
-               "with --scene)\n",
-               displayFile(playback.sceneFile().string()));
-  if (!o.quiet && !playback.unnamedFluids().empty())
-    fmt::print(stderr, "warning: {}\n", playback.unnamedFluids());
+  // encloses 14 times their volume), and frames or scenes left out are missing surfaces:
+  // warnings, also where stderr is not a terminal (a farm's log).
+  if (!o.quiet)
+    for (const std::string& w :
+         playbackWarnings(playback, "every fluid is meshed at ParticleSize 1", "give the scene with --scene"))
+      fmt::print(stderr, "warning: {}\n", w);
   const std::int64_t lastFrame = playback.frameNumbers().back();
   std::size_t particles = 0;
   std::optional<ProgressLine> progress;

@@ -58,12 +58,13 @@ class PictureObserver : public FrameObserver {
   void onFrame(const FrameSnapshot& frame) override {
     if (!range_.contains(frame.frame)) return;
     const auto surfaces = surfaces_ ? surfacesOf(frame, *surfaces_) : std::vector<render::RenderSurface>{};
-    maker_.write(picturePath(out_, scene_, frame.frame), frame, camera_, surfaces);
-    if (first < 0) first = frame.frame;
-    last = frame.frame;
+    std::filesystem::path path = picturePath(out_, scene_, frame.frame);
+    maker_.write(path, frame, camera_, surfaces);
+    pictures.push_back(std::move(path));
     ++written;
   }
-  std::int64_t first = -1, last = -1, written = 0;
+  std::int64_t written = 0;
+  std::vector<std::filesystem::path> pictures;  // written by this render, in frame order
 
  private:
   PictureMaker& maker_;
@@ -133,16 +134,60 @@ std::string findOnPath(const std::string& name) {
 
 std::string findFfmpeg() { return findOnPath("ffmpeg"); }
 
-void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie) {
+void encodeMovie(const std::vector<std::filesystem::path>& pictures, double fps, const std::string& movie) {
   const std::string ffmpeg = findFfmpeg();
   if (ffmpeg.empty()) throw IoError("cannot write " + movie + ": ffmpeg is not installed (Debian: apt-get install ffmpeg)");
+  if (pictures.empty()) throw IoError("cannot write " + movie + ": no picture to encode");
   // Encoded next to the target, then renamed: a movie is complete or absent.
   const std::filesystem::path target(movie);
-  const std::filesystem::path partial = target.parent_path() / ("." + target.filename().string() + ".part.mp4");
-  const std::vector<std::string> args = {ffmpeg, "-nostdin", "-y", "-loglevel", "error",
-                                         "-framerate", fmt::format("{:g}", fps), "-start_number",
-                                         std::to_string(firstFrame), "-i", pattern, "-c:v", "libx264",
-                                         "-pix_fmt", "yuv420p", "-movflags", "+faststart", partial.string()};
+  const std::filesystem::path parent =
+      target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+  const std::filesystem::path partial = parent / ("." + target.filename().string() + ".part.mp4");
+  // ffmpeg reads a numbered sequence: the pictures of this render only, numbered from 0
+  // as links in a folder of their own. Reading the output folder's <scene>.%04d.png
+  // from the first frame on took every later picture there too, an earlier render's
+  // (another take, another size) included, and stopped at a gap in the numbers.
+  const std::filesystem::path links =
+      parent / fmt::format(".{}.frames.{}", target.filename().string(), ::getpid());
+  struct RemoveLinks {
+    std::filesystem::path dir;
+    ~RemoveLinks() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } removeLinks{links};
+  std::error_code ec;
+  std::filesystem::remove_all(links, ec);
+  std::filesystem::create_directory(links, ec);
+  if (ec)
+    throw IoError(fmt::format("cannot write {}: cannot make {}: {}", movie, links.string(), ec.message()));
+  for (std::size_t k = 0; k < pictures.size(); ++k) {
+    std::filesystem::create_symlink(std::filesystem::absolute(pictures[k]),
+                                    links / fmt::format("{:08}.png", k), ec);
+    if (ec)
+      throw IoError(
+          fmt::format("cannot write {}: cannot link {}: {}", movie, pictures[k].string(), ec.message()));
+  }
+  const std::vector<std::string> args = {ffmpeg,
+                                         "-nostdin",
+                                         "-y",
+                                         "-loglevel",
+                                         "error",
+                                         "-framerate",
+                                         fmt::format("{:g}", fps),
+                                         "-start_number",
+                                         "0",
+                                         "-i",
+                                         (links / "%08d.png").string(),
+                                         "-frames:v",
+                                         std::to_string(pictures.size()),
+                                         "-c:v",
+                                         "libx264",
+                                         "-pix_fmt",
+                                         "yuv420p",
+                                         "-movflags",
+                                         "+faststart",
+                                         partial.string()};
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -158,7 +203,6 @@ void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps
     throw IoError(fmt::format("cannot write {}: ffmpeg failed (exit status {})", movie,
                               WIFEXITED(status) ? WEXITSTATUS(status) : -1));
   }
-  std::error_code ec;
   std::filesystem::rename(partial, target, ec);
   if (ec) throw IoError(fmt::format("cannot write {}: {}", movie, ec.message()));
 }
@@ -170,6 +214,10 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
   cmd->add_option("INPUT", o.input, ".scene file or recorded <scene>Sim folder (default: the embedded default scene)")
       ->check(nonEmptyPath());
   cmd->add_option("--out", o.out, "Folder for the pictures <scene>.NNNN.png")->required()->check(nonEmptyPath(false));
+  cmd->add_option("--scene", o.scene,
+                  "With a recorded folder: the scene file it was made with, for colours, particle sizes, the "
+                  "container and the camera (default: <scene>.scene beside the folder)")
+      ->check(nonEmptyPath());
   cmd->add_option("--width", o.width, "Picture width in pixels, 16 to 16384")
       ->transform(wholeNumberIn(16, 16384))
       ->capture_default_str();
@@ -177,7 +225,9 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& o) {
       ->transform(wholeNumberIn(16, 16384))
       ->capture_default_str();
   cmd->add_option("--frames", o.frames, "Frames to draw: a:b (inclusive), a:, :b or a (default: all)");
-  cmd->add_option("--movie", o.movie, "Also encode the pictures into this .mp4 file (needs ffmpeg)")
+  cmd->add_option("--movie", o.movie,
+                  "Also encode this render's pictures (the frames drawn, nothing else) into this .mp4 file "
+                  "(needs ffmpeg)")
       ->check(nonEmptyPath())
       ->check(outputFileWithExtension(".mp4", "an MP4 movie"));
   cmd->add_option("--substeps", o.substeps, "Overrides the scene's <Simulation><Substeps> (1 to 10000, as in a scene)")
@@ -224,7 +274,7 @@ int renderCommand(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   if (recorded) {
     refuseSimulationOptions(o.input, o.substeps.has_value(), o.maxParticles != 0);
-    RecordedFrames rec = openRecorded(o.input);
+    RecordedFrames rec = openRecorded(o.input, o.scene);
     sceneName = rec.sceneName;
     checkOutputName(sceneName, "scene name", o.input);  // it names the pictures
     fps = rec.framesPerSecond;
@@ -236,10 +286,15 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("frames {} to {}, the recorded ones", rec.frameNumber(0),
                                    rec.frameNumber(rec.frameCount() - 1)));
     if (o.surface) checkSurfaceOptions(o.surfaceSettings, rec.load(0), o.input, o.quiet);
-    if (!rec.sceneNote().empty() && chatty) fmt::print(stderr, "note: {}\n", rec.sceneNote());
-    if (!rec.unnamedFluids().empty() && !o.quiet) fmt::print(stderr, "warning: {}\n", rec.unnamedFluids());
-    if (chatty)
-      for (const std::string& note : rec.notes()) fmt::print(stderr, "note: {}\n", note);
+    // What changes the pictures (no scene: grey particles of size 1, no container, a
+    // camera of our choosing; frames or scenes left out), terminal or not.
+    if (!o.quiet)
+      for (const std::string& w :
+           playbackWarnings(rec.playback(),
+                            "every fluid is drawn grey at ParticleSize 1, with no container, from a camera "
+                            "that frames the first frame",
+                            "give the scene with --scene"))
+        fmt::print(stderr, "warning: {}\n", w);
     const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);
     if (range.last && *range.last > lastRecorded && chatty)
       fmt::print(stderr, "note: --frames reaches frame {}; the recording ends at frame {}, the last drawn\n",
@@ -276,6 +331,11 @@ int renderCommand(const RenderOptions& o) {
       return static_cast<int>(ExitCode::Interrupted);
     }
   } else {
+    if (!o.scene.empty())
+      throw InputError({"command line", 0, "--scene"},
+                       fmt::format("is for a recorded folder: {} is a scene",
+                                   o.input.empty() ? "the default scene" : o.input),
+                       "give the scene as INPUT, or leave --scene out");
     LoadedScene loaded = loadScene(o.input, o.maxParticles);
     if (o.substeps) loaded.desc.simulation.substeps = static_cast<int>(*o.substeps);
     sceneName = loaded.name;
@@ -324,7 +384,7 @@ int renderCommand(const RenderOptions& o) {
                      "a range that holds at least one frame");
   if (!o.movie.empty()) {
     if (chatty) fmt::print(stderr, "encoding {} ...\n", o.movie);
-    encodeMovie((out / (sceneName + ".%04d.png")).string(), pictures->first, fps, o.movie);
+    encodeMovie(pictures->pictures, fps, o.movie);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (chatty)

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "surface/surface.h"
 
@@ -19,6 +20,7 @@ namespace softsub::app {
 struct RenderOptions {
   std::string input;                      ///< .scene file or recorded folder; empty: the default scene
   std::string out;                        ///< folder for the pictures (required)
+  std::string scene;  ///< with a recording: its scene file; empty: <scene>.scene beside it
   int width = 1280;                       ///< picture width, pixels
   int height = 720;                       ///< picture height, pixels
   std::string frames;                     ///< "a:b" inclusive, "a:", ":b" or "a"; empty: all
@@ -51,9 +53,10 @@ CLI::App* addRenderCommand(CLI::App& root, RenderOptions& options);
 /// Runs it; returns the exit code, throws InputError, IoError or BlowUpError.
 int renderCommand(const RenderOptions& options);
 
-/// Encodes `<dir>/<stem>.%04d.png` from `firstFrame` at `fps` into `movie` with ffmpeg
-/// (H.264, yuv420p). IoError when ffmpeg is missing or fails.
-void encodeMovie(const std::string& pattern, std::int64_t firstFrame, double fps, const std::string& movie);
+/// Encodes `pictures`, in their order, at `fps` into `movie` with ffmpeg (H.264,
+/// yuv420p): exactly those pictures, whatever else their folder holds. IoError when
+/// ffmpeg is missing or fails, or there is no picture.
+void encodeMovie(const std::vector<std::filesystem::path>& pictures, double fps, const std::string& movie);
 
 /// The path of the executable `name` on PATH (or `name` itself when it holds a '/' and
 /// is executable), or empty.

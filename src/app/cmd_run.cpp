@@ -136,10 +136,13 @@ std::uint64_t runFingerprint(const RunOptions& o, scene::SceneDesc desc, const c
                   h);
   for (const cache::ObjectMesh& mesh : meshes) h = hashBytes(cache::encodeObj(mesh), h);
   const solver::Model& model = sim.model();
+  // --stop-recording-at is not a setting: in a batch run it only ends the run, as
+  // --frames does, so a run it ended can be extended. Hashed as the "no limit" it was
+  // before, so that folders made without it keep their fingerprint.
   const std::string options = fmt::format(
-      "softsub {}|formats {}|voxel {:.17g}|blob {:.17g}|adaptive {} {}|speed-limit {:.17g}|record-up-to {}",
+      "softsub {}|formats {}|voxel {:.17g}|blob {:.17g}|adaptive {} {}|speed-limit {:.17g}|record-up-to -1",
       SOFTSUB_VERSION, cache::formatsToString(formats), o.surface.voxelSize, o.surface.radiusScale,
-      model.adaptiveSubsteps, model.maxSubsteps, model.maxTravelPerSubstep, o.stopRecordingAt);
+      model.adaptiveSubsteps, model.maxSubsteps, model.maxTravelPerSubstep);
   return hashBytes(options, h);
 }
 
@@ -478,6 +481,9 @@ int runCommand(const RunOptions& o) {
       previewNote = ", preview: " + picture.string();
     } catch (const IoError& e) {
       fmt::print(stderr, "warning: no preview picture: {}\n", e.what());
+      // One an earlier run (or this one, before a resume) drew would pass for this run's.
+      std::error_code ignored;
+      std::filesystem::remove(picture, ignored);
     }
   }
   if (chatty && o.adaptive && mostSubsteps > 0)

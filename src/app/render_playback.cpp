@@ -13,8 +13,8 @@
 
 namespace softsub::app {
 
-RecordedFrames::RecordedFrames(const std::string& folder)
-    : playback_(std::make_unique<session::Playback>(folder)) {
+RecordedFrames::RecordedFrames(const std::string& folder, const std::string& sceneFile)
+    : playback_(std::make_unique<session::Playback>(folder, sceneFile)) {
   sceneName = playback_->sceneName();
   framesPerSecond = playback_->framesPerSecond();
   if (playback_->scene()) scene = renderSceneOf(*playback_->scene(), {});
@@ -61,5 +61,20 @@ FrameSnapshot RecordedFrames::load(std::size_t index) const { return playback_->
 const std::string& RecordedFrames::sceneNote() const { return playback_->sceneNote(); }
 const std::string& RecordedFrames::unnamedFluids() const { return playback_->unnamedFluids(); }
 const std::vector<std::string>& RecordedFrames::notes() const { return playback_->notes(); }
+
+std::vector<std::string> playbackWarnings(const session::Playback& playback, std::string_view withoutScene,
+                                          std::string_view advice) {
+  std::vector<std::string> out;
+  if (!playback.scene()) {
+    const std::string file = playback.sceneFile().generic_string();
+    out.push_back(playback.sceneNote().empty()
+                      ? fmt::format("no usable scene file at {}: {} ({})", file, withoutScene, advice)
+                      : fmt::format("no usable scene file at {} ({}): {} ({})", file, playback.sceneNote(),
+                                    withoutScene, advice));
+  }
+  if (!playback.unnamedFluids().empty()) out.push_back(playback.unnamedFluids());
+  for (const std::string& note : playback.notes()) out.push_back(note);
+  return out;
+}
 
 }  // namespace softsub::app

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/snapshot.h"
@@ -19,8 +20,9 @@ namespace softsub::app {
 /// Frames of a recorded folder plus what draws them.
 class RecordedFrames {
  public:
-  /// Opens `folder`; InputError/IoError when it holds no readable frames.
-  explicit RecordedFrames(const std::string& folder);
+  /// Opens `folder`; InputError/IoError when it holds no readable frames. `sceneFile`,
+  /// when given, is read instead of `<scene>.scene` beside the folder and must read.
+  explicit RecordedFrames(const std::string& folder, const std::string& sceneFile = {});
   ~RecordedFrames();
   RecordedFrames(RecordedFrames&&) noexcept;
 
@@ -34,6 +36,8 @@ class RecordedFrames {
   [[nodiscard]] const std::string& unnamedFluids() const;
   /// Which scene was taken, which frames were left out (session::Playback::notes).
   [[nodiscard]] const std::vector<std::string>& notes() const;
+  /// The folder as played.
+  [[nodiscard]] const session::Playback& playback() const { return *playback_; }
 
   std::string sceneName;            ///< names the pictures
   double framesPerSecond = 24;      ///< from the scene beside the folder, else 24
@@ -54,6 +58,18 @@ class RecordedFrames {
 void refuseSimulationOptions(const std::string& input, bool substeps, bool maxParticles);
 
 /// Opens a recorded folder (see RecordedFrames).
-[[nodiscard]] inline RecordedFrames openRecorded(const std::string& folder) { return RecordedFrames(folder); }
+[[nodiscard]] inline RecordedFrames openRecorded(const std::string& folder,
+                                                 const std::string& sceneFile = {}) {
+  return RecordedFrames(folder, sceneFile);
+}
+
+/// What a command that draws or meshes a recording must say about it, terminal or not
+/// (they change its output; `--quiet` alone silences them): no usable scene file (the
+/// one looked for, why, what then happens: `withoutScene`, and `advice`), fluids the
+/// scene has no `<Fluid>` of, and the frames or other scenes of the folder left out
+/// (session::Playback::notes). One line each, without the "warning: " prefix.
+[[nodiscard]] std::vector<std::string> playbackWarnings(const session::Playback& playback,
+                                                        std::string_view withoutScene,
+                                                        std::string_view advice);
 
 }  // namespace softsub::app

@@ -167,11 +167,13 @@ ResumePoint resumeFrom(const std::filesystem::path& outDir, const std::string& s
   // The settings of the run in the folder: every manifest that reads must have ours.
   for (auto it = run.manifests.rbegin(); it != run.manifests.rend(); ++it)
     if (it->fingerprint != fingerprint)
-      throw InputError({outDir.string(), 0, "--resume"},
-                       fmt::format("the folder holds frame {} of '{}' made with other settings (the scene, its "
-                                   "meshes, an option or the softsub version changed)",
-                                   it->frame, sceneName),
-                       "the same scene and options as the run being resumed, or run without --resume to start over");
+      throw InputError(
+          {outDir.string(), 0, "--resume"},
+          fmt::format("the folder holds frame {} of '{}' made with other settings (one of: the "
+                      "scene or its meshes, --substeps, --integrator, --formats, --voxel-size, "
+                      "--blob-radius, --adaptive, --max-substeps, --speed-limit, the softsub version)",
+                      it->frame, sceneName),
+          "the same scene and options as the run being resumed, or run without --resume to start over");
   point.completeUpTo = static_cast<std::int64_t>(run.complete) - 1;
   // The newest complete frame whose checkpoint restores.
   for (const std::size_t k : run.checkpointed(outDir)) {
@@ -251,6 +253,8 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
     }
   for (const std::int64_t f : cache::checkpointFrames(outDir, sceneName))
     removeQuietly(cache::checkpointPath(outDir, sceneName, f));
+  // The earlier run's --preview picture showed its last frame under this run's name.
+  if (const fs::path preview = outDir / (sceneName + ".preview.png"); !kept(preview)) removeQuietly(preview);
   // A frame folder left empty goes too (a folder exists only for a format written);
   // one that still holds anything stays.
   if (removed > 0)

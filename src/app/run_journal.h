@@ -85,7 +85,8 @@ void pruneCheckpoints(const std::filesystem::path& outDir, const std::string& sc
 /// since), and any of `keep` (the scene's input files). Also removed: the files of the
 /// frame a killed run was writing (no manifest names them): those named as the last
 /// manifest's files with the next frame's number, or PDC ticks one frame's step on, and
-/// written after that manifest. Returns how many frame files went.
+/// written after that manifest. And the earlier run's `<scene>.preview.png` (it showed
+/// another run's last frame under this run's name). Returns how many frame files went.
 std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::string& sceneName,
                              const std::vector<std::filesystem::path>& keep);
 

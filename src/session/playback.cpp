@@ -122,8 +122,9 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
     const auto kept = static_cast<std::size_t>(
         std::upper_bound(numbers_.begin(), numbers_.end(), manifests.back()) - numbers_.begin());
     notes_.push_back(fmt::format(
-        "frames {} to {} of '{}' left out: they have no manifest, and the last frame that has one is {} (an "
-        "earlier, longer run's frames that a later run did not replace)",
+        "frames {} to {} of '{}' left out: they have no manifest, and the last frame that has one is {} (a "
+        "frame a killed run was writing, or an earlier, longer run's frames that a later run did not "
+        "replace)",
         numbers_[kept], numbers_.back(), sceneName_, manifests.back()));
     numbers_.resize(kept);
     frames_.resize(kept);
@@ -172,7 +173,7 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
       scene_ = scene::readSceneFile(sceneFile.string());
       fps_ = scene_->simulation.framesPerSecond;
     } catch (const std::exception& e) {  // InputError, IoError: play without it
-      sceneNote_ = fmt::format("scene file not used: {}", e.what());
+      sceneNote_ = e.what();
     }
   }
 

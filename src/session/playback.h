@@ -54,7 +54,8 @@ class Playback {
   [[nodiscard]] double framesPerSecond() const { return fps_; }
   /// The scene file beside the folder, when there and valid (camera, container).
   [[nodiscard]] const std::optional<scene::SceneDesc>& scene() const { return scene_; }
-  /// Why the scene file beside the folder was not used, when it is there but invalid; "".
+  /// Why the scene file beside the folder was not used (the error reading it), when it is
+  /// there but invalid; "".
   [[nodiscard]] const std::string& sceneNote() const { return sceneNote_; }
   /// The scene file looked for (beside the folder, or the one given).
   [[nodiscard]] const std::filesystem::path& sceneFile() const { return sceneFile_; }

@@ -424,6 +424,99 @@ TEST(RenderCli, AMovieIsAnMp4OfThePictures) {
             (std::vector<std::string>{"pictures", "two-fluids.mp4", "two-fluids.scene"}));
 }
 
+/// The number of samples (video frames) of an MP4 with one track: its `stsz` box's
+/// sample count (ISO/IEC 14496-12: size, "stsz", version and flags, sample size, count).
+std::uint32_t mp4SampleCount(const std::string& bytes) {
+  const std::size_t at = bytes.find("stsz");
+  if (at == std::string::npos || at + 16 > bytes.size()) return 0;
+  std::uint32_t n = 0;
+  for (std::size_t k = at + 12; k < at + 16; ++k) n = n << 8 | static_cast<unsigned char>(bytes[k]);
+  return n;
+}
+
+// The movie holds this render's pictures and no other. It was encoded from the folder's
+// numbered sequence from the first frame on, so a second take rendered into the same
+// folder for fewer frames got the first take's later pictures appended, without a word.
+TEST(RenderCli, AMovieHoldsThePicturesOfThisRenderOnly) {
+  if (findProgram("ffmpeg").empty()) GTEST_SKIP() << "ffmpeg is not installed";
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const fs::path out = tmp / "pictures";
+  ASSERT_EQ(render(scene, out, "--frames 0:6", tmp.path()).code, 0);
+  for (const auto& [frames, count] :
+       {std::pair<std::string, std::uint32_t>{"0:2", 3}, {"3:4", 2}, {"5", 1}}) {
+    const fs::path movie = tmp / ("take-" + std::to_string(count) + ".mp4");
+    const RunResult r = render(scene, out, "--frames " + frames + " --movie " + quote(movie), tmp.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(mp4SampleCount(readFile(movie)), count) << frames;
+  }
+  // The all-frames movie counts them all (the count above is the movie's, not a constant).
+  ASSERT_EQ(render(scene, out, "--movie all.mp4", tmp.path()).code, 0);
+  EXPECT_EQ(mp4SampleCount(readFile(tmp / "all.mp4")), listFrameFiles(out).size());
+  // No folder of links or partial movie left behind.
+  EXPECT_EQ(listEntries(tmp.path()),
+            (std::vector<std::string>{"all.mp4", "pictures", "take-1.mp4", "take-2.mp4", "take-3.mp4",
+                                      "two-fluids.scene"}));
+}
+
+// A recording played without its scene file is drawn grey at size 1 with no container:
+// that is said on stderr whether or not it is a terminal (a farm's log), and --scene
+// gives the scene, as for mesh; with a scene as the input --scene is refused.
+TEST(RenderCli, ARecordingAwayFromItsSceneIsWarnedAboutAndTakesOneWithScene) {
+  TempDir tmp;
+  const fs::path recorded = recordTwoFluids(tmp.path());
+  const fs::path moved = tmp / "elsewhere" / "two-fluidsSim";
+  fs::create_directories(moved.parent_path());
+  fs::rename(recorded, moved);
+  const std::string size = fmt::format(" --width {} --height {} --frames 2", kWidth, kHeight);
+  const RunResult bare = runSoftsub("render " + quote(moved) + " --out bare" + size, tmp.path());
+  ASSERT_EQ(bare.code, 0) << bare.err;
+  EXPECT_NE(
+      bare.err.find("warning: no usable scene file at " + (tmp / "elsewhere/two-fluids.scene").string() +
+                    ": every fluid is drawn grey at ParticleSize 1"),
+      std::string::npos)
+      << bare.err;
+  const RunResult given =
+      runSoftsub("render " + quote(moved) + " --scene two-fluids.scene --out given" + size, tmp.path());
+  ASSERT_EQ(given.code, 0) << given.err;
+  EXPECT_EQ(given.err, "");
+  ASSERT_EQ(render(tmp / "two-fluids.scene", tmp / "scene", "--frames 2", tmp.path()).code, 0);
+  EXPECT_EQ(
+      differingPixels(readPng(tmp / "scene/two-fluids.0002.png"), readPng(tmp / "given/two-fluids.0002.png")),
+      0u);
+  EXPECT_GT(
+      differingPixels(readPng(tmp / "scene/two-fluids.0002.png"), readPng(tmp / "bare/two-fluids.0002.png")),
+      0u);
+  const RunResult refused =
+      render(tmp / "two-fluids.scene", tmp / "no", "--scene two-fluids.scene", tmp.path());
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_EQ(refused.err.rfind("error: command line: --scene: is for a recorded folder", 0), 0u)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(tmp / "no"));
+}
+
+// Frames left out of a folder (no manifest: a killed run's; a .sim changed since the run)
+// are missing pictures and surfaces: render and mesh say so on stderr terminal or not
+// (they were notes for a terminal only), and --quiet silences them.
+TEST(RenderCli, FramesLeftOutOfARecordingAreWarnedAboutWithoutATerminal) {
+  TempDir tmp;
+  const fs::path recorded = recordTwoFluids(tmp.path());
+  fs::remove(recorded / "manifest" / "two-fluids.0003.manifest");
+  const std::string size = fmt::format(" --width {} --height {}", kWidth, kHeight);
+  const RunResult r = runSoftsub("render " + quote(recorded) + " --out p" + size, tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: frames 3 to 3 of 'two-fluids' left out: they have no manifest"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(listFrameFiles(tmp / "p"), pictureNames("two-fluids", 0, 2));
+  const RunResult m = runSoftsub("mesh " + quote(recorded), tmp.path());
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_NE(m.err.find("warning: frames 3 to 3 of 'two-fluids' left out"), std::string::npos) << m.err;
+  const RunResult quiet = runSoftsub("render " + quote(recorded) + " --out q -q" + size, tmp.path());
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+}
+
 TEST(RunPreview, WritesAPictureOfTheLastFrame) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
@@ -445,6 +538,22 @@ TEST(RunPreview, WritesAPictureOfTheLastFrame) {
     last.fluids[k].particleSize = static_cast<float>(desc.fluids[k].params.particleSize);
   }
   expectFluidsWhereTheyProject(im, cameraOf(desc), last);
+}
+
+// A fresh run removes the earlier run's frames; its preview picture went on showing the
+// earlier run's last frame under the scene's name. It goes with them now.
+TEST(RunPreview, AFreshRunWithoutPreviewRemovesTheEarlierRunsPicture) {
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const std::string run = "run " + quote(scene) + " --frames 1 --formats sim -q --out o";
+  ASSERT_EQ(runSoftsub(run + " --preview", tmp.path()).code, 0);
+  ASSERT_TRUE(fs::is_regular_file(tmp / "o/two-fluids.preview.png"));
+  // Resumed (nothing left to do): the run's own picture stays.
+  ASSERT_EQ(runSoftsub(run + " --resume", tmp.path()).code, 0);
+  EXPECT_TRUE(fs::is_regular_file(tmp / "o/two-fluids.preview.png"));
+  ASSERT_EQ(runSoftsub(run, tmp.path()).code, 0);
+  EXPECT_FALSE(fs::exists(tmp / "o/two-fluids.preview.png"));
+  EXPECT_TRUE(fs::is_regular_file(tmp / "o/two-fluids.0001.sim"));
 }
 
 // --formats none writes no caches, and --preview still draws the picture it asks for:

@@ -208,6 +208,27 @@ TEST(Resume, AFolderOfARunWithOtherSettingsIsRefusedAndLeftAlone) {
   EXPECT_NE(none.err.find("--resume"), std::string::npos) << none.err;
 }
 
+// --stop-recording-at only ends a batch run, as --frames does: it is not a setting. It was
+// part of the fingerprint, so a run it ended could never be extended (every --resume was
+// refused as "other settings"), and a value past the scene's end changed every manifest.
+TEST(Resume, StopRecordingAtEndsARunThatCanBeExtendedAndPastTheEndChangesNothing) {
+  TempDir tmp;
+  const std::string base = "run -q " + scenePath("two-fluids.scene");
+  ASSERT_EQ(runSoftsub(base + " --frames 6 --out ref", tmp.path()).code, 0);
+  ASSERT_EQ(runSoftsub(base + " --frames 6 --stop-recording-at 2 --out o", tmp.path()).code, 0);
+  EXPECT_EQ(cache::manifestFrames(tmp / "o", "two-fluids"), (std::vector<std::int64_t>{0, 1, 2}));
+  const RunResult more = runSoftsub(base + " --frames 6 --stop-recording-at 4 --resume --out o", tmp.path());
+  ASSERT_EQ(more.code, 0) << more.err;
+  EXPECT_EQ(cache::manifestFrames(tmp / "o", "two-fluids").back(), 4);
+  const RunResult rest = runSoftsub(base + " --frames 6 --resume --out o", tmp.path());
+  ASSERT_EQ(rest.code, 0) << rest.err;
+  const Tree ref = treeOf(tmp / "ref");
+  EXPECT_EQ(differences(ref, treeOf(tmp / "o")), std::vector<std::string>{});
+  // Past the last frame: the same files as without it, and resumable without it.
+  ASSERT_EQ(runSoftsub(base + " --frames 6 --stop-recording-at 100 --out past", tmp.path()).code, 0);
+  EXPECT_EQ(differences(ref, treeOf(tmp / "past")), std::vector<std::string>{});
+}
+
 // A run that writes nothing (--formats none, -record 0) has nothing to resume and makes
 // nothing to resume from: --resume with it is a usage error of the command line, refused
 // before the scene is read (a missing scene was exit 3, "cannot read"), and nothing on
