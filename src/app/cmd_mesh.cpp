@@ -71,7 +71,7 @@ int meshCommand(const MeshOptions& o) {
   // warnings, also where stderr is not a terminal (a farm's log).
   if (!o.quiet)
     for (const std::string& w :
-         playbackWarnings(playback, "every fluid is meshed at ParticleSize 1", "give the scene with --scene"))
+         playbackWarnings(playback, "every fluid is meshed at ParticleSize 1", "--scene"))
       fmt::print(stderr, "warning: {}\n", w);
   const std::int64_t lastFrame = playback.frameNumbers().back();
   std::size_t particles = 0;

@@ -293,7 +293,7 @@ int renderCommand(const RenderOptions& o) {
            playbackWarnings(rec.playback(),
                             "every fluid is drawn grey at ParticleSize 1, with no container, from a camera "
                             "that frames the first frame",
-                            "give the scene with --scene"))
+                            "--scene"))
         fmt::print(stderr, "warning: {}\n", w);
     const std::int64_t lastRecorded = rec.frameNumber(rec.frameCount() - 1);
     if (range.last && *range.last > lastRecorded && chatty)

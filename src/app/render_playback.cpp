@@ -63,16 +63,19 @@ const std::string& RecordedFrames::unnamedFluids() const { return playback_->unn
 const std::vector<std::string>& RecordedFrames::notes() const { return playback_->notes(); }
 
 std::vector<std::string> playbackWarnings(const session::Playback& playback, std::string_view withoutScene,
-                                          std::string_view advice) {
+                                          std::string_view how) {
   std::vector<std::string> out;
   if (!playback.scene()) {
     const std::string file = playback.sceneFile().generic_string();
-    out.push_back(playback.sceneNote().empty()
-                      ? fmt::format("no usable scene file at {}: {} ({})", file, withoutScene, advice)
-                      : fmt::format("no usable scene file at {} ({}): {} ({})", file, playback.sceneNote(),
-                                    withoutScene, advice));
+    out.push_back(
+        playback.sceneNote().empty()
+            ? fmt::format("no usable scene file at {}: {} (give the scene with {})", file, withoutScene, how)
+            : fmt::format("no usable scene file at {} ({}): {} (give the scene with {})", file,
+                          playback.sceneNote(), withoutScene, how));
   }
-  if (!playback.unnamedFluids().empty()) out.push_back(playback.unnamedFluids());
+  if (!playback.unnamedFluids().empty())
+    out.push_back(
+        fmt::format("{}; give the scene the recording was made with ({})", playback.unnamedFluids(), how));
   for (const std::string& note : playback.notes()) out.push_back(note);
   return out;
 }

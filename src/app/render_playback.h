@@ -65,11 +65,11 @@ void refuseSimulationOptions(const std::string& input, bool substeps, bool maxPa
 
 /// What a command that draws or meshes a recording must say about it, terminal or not
 /// (they change its output; `--quiet` alone silences them): no usable scene file (the
-/// one looked for, why, what then happens: `withoutScene`, and `advice`), fluids the
-/// scene has no `<Fluid>` of, and the frames or other scenes of the folder left out
-/// (session::Playback::notes). One line each, without the "warning: " prefix.
+/// one looked for, why, what then happens: `withoutScene`), fluids the scene has no
+/// `<Fluid>` of, and the frames or other scenes of the folder left out
+/// (session::Playback::notes). `how`: how to give the scene ("--scene"). One line
+/// each, without the "warning: " prefix.
 [[nodiscard]] std::vector<std::string> playbackWarnings(const session::Playback& playback,
-                                                        std::string_view withoutScene,
-                                                        std::string_view advice);
+                                                        std::string_view withoutScene, std::string_view how);
 
 }  // namespace softsub::app

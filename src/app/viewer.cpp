@@ -68,6 +68,11 @@ Viewer::Viewer(const ViewOptions& options) : options_(options) {
     recorded_ = std::make_unique<RecordedFrames>(options.input);
     sceneName_ = recorded_->sceneName;
     checkOutputName(sceneName_, "scene name", options.input);  // P's screenshots are named after it
+    // As render and mesh say them (defaults drawn, frames left out), and in the panel.
+    playbackWarnings_ = playbackWarnings(
+        recorded_->playback(), "every fluid is drawn grey at ParticleSize 1, with no container",
+        fmt::format("a copy of it beside the folder named {}.scene", sceneName_));
+    for (const std::string& w : playbackWarnings_) fmt::print(stderr, "warning: {}\n", w);
     renderScene_ = recorded_->scene;
     startCamera_ = recorded_->camera;
     playFrame_ = recorded_->load(0);

@@ -77,6 +77,7 @@ class Viewer {
 
   std::unique_ptr<session::LiveSession> session_;   // live mode
   std::unique_ptr<RecordedFrames> recorded_;        // playback mode
+  std::vector<std::string> playbackWarnings_;       // playback mode: printed at start, shown in the panel
   std::size_t playIndex_ = 0;
   FrameSnapshot playFrame_;
   std::string sceneName_;

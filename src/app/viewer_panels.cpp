@@ -400,6 +400,11 @@ void Viewer::drawPlaybackPanel() {
     playFrame_ = recorded_->load(playIndex_);
   }
   drawTransport("first frame");
+  for (const std::string& w : playbackWarnings_) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", w.c_str());
+    ImGui::PopStyleColor();
+  }
 }
 
 void Viewer::drawTransport(const char* restartLabel) {

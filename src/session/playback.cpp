@@ -198,7 +198,7 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
     if (!missing.empty())
       unnamedFluids_ = fmt::format(
           "the scene file {} has no fluid {} of the recording (its fluids: {}): drawn and meshed with the "
-          "default colour and ParticleSize 1; give the scene the recording was made with (--scene)",
+          "default colour and ParticleSize 1",
           sceneFile_.generic_string(), fmt::join(missing, ", "),
           named.empty() ? "none" : fmt::format("{}", fmt::join(named, ", ")));
   }

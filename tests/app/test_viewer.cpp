@@ -321,6 +321,30 @@ TEST(Viewer, PlaysBackARecordedFolder) {
   EXPECT_EQ(listFrameFiles(recorded).size(), 5u);
 }
 
+// Played away from its scene file, a recording is drawn grey at size 1 with no container,
+// and frames without a manifest are left out: the viewer says so on stderr, as render and
+// mesh do (it said nothing).
+TEST(Viewer, PlayingARecordingAwayFromItsSceneWarns) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "two-fluids.scene", tmp.path());
+  const fs::path recorded = recordFrames(scene, 3, tmp.path());
+  const fs::path moved = tmp / "elsewhere" / "two-fluidsSim";
+  fs::create_directories(moved.parent_path());
+  fs::rename(recorded, moved);
+  fs::remove(moved / "manifest" / "two-fluids.0003.manifest");
+  writeText(tmp / "play.txt", "frames 1\nquit\n");
+  const RunResult r = view(moved, tmp / "play.txt", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_NE(
+      r.err.find("warning: no usable scene file at " + (tmp / "elsewhere/two-fluids.scene").string() +
+                 ": every fluid is drawn grey at ParticleSize 1, with no container (give the scene with a "
+                 "copy of it beside the folder named two-fluids.scene)"),
+      std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("warning: frames 3 to 3 of 'two-fluids' left out"), std::string::npos) << r.err;
+}
+
 TEST(Viewer, ARecordingRefusesParameterEdits) {
   SKIP_WITHOUT_XVFB();
   TempDir tmp;
