@@ -64,17 +64,23 @@ std::string commentText(const std::string& text) {
 std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
   // The fluid's own scales follow the spacing: particles touch at rest. The comment says
   // how it was made without the command's "--" (not allowed in an XML comment).
+  // 1.5 S to 15 digits: 1.5 x 0.3 is 0.44999999999999996 in full.
   std::string s = fmt::format(
       "<!-- softsub fill of {} at spacing {}{}: {} particles -->\n"
+      "<!-- Lengths follow the spacing; Amplitude, the force clamps and ParticleMass keep their defaults, so "
+      "a\n"
+      "     spacing below 1 makes a denser, stiffer fluid that may need more Substeps: softsub info on the "
+      "scene\n"
+      "     gives the stability estimate and the count it asks for. -->\n"
       "<Fluid>\n"
       "  <Name>{}</Name>\n"
       "  <ParticleSize>{}</ParticleSize>\n"
       "  <FiniteDistance>{}</FiniteDistance>\n"
-      "  <InteractionDistance>{}</InteractionDistance>\n"
+      "  <InteractionDistance>{:.15g}</InteractionDistance>\n"
       "  <NumberOfParticles>{}</NumberOfParticles>\n"
       "  <Particles>\n",
-      commentText(o.mesh), o.spacing, o.surface ? ", surface only" : "", r.points.size(), o.name, o.spacing, o.spacing,
-      1.5 * o.spacing, r.points.size());
+      commentText(o.mesh), o.spacing, o.surface ? ", surface only" : "", r.points.size(), o.name, o.spacing,
+      o.spacing, 1.5 * o.spacing, r.points.size());
   for (const Vec3& p : r.points) s += fmt::format("    {} {} {}\n", p.x(), p.y(), p.z());
   s += "  </Particles>\n</Fluid>\n";
   return s;

@@ -1,14 +1,18 @@
 // `softsub info FILE.scene`: what a scene holds, as the solver will see it.
+#include <algorithm>
 #include <variant>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cmd_info.h"
 #include "core/aabb.h"
 #include "core/error.h"
+#include "scene/bodies.h"
 #include "scene/compile.h"
 #include "scene/schema.h"
 #include "scene_source.h"
+#include "solver/stability.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -58,6 +62,27 @@ void printSceneInfo(const std::string& path) {
              sim.frames, sim.framesPerSecond, sim.frames / sim.framesPerSecond, sim.substeps,
              compiled.model.dt(), scene::kIntegratorNames[static_cast<std::size_t>(sim.integrator)],
              vec(sim.gravity));
+  // The viewer's stability hint (docs/architecture.md, "Stability estimate").
+  if (const solver::StabilityReport st = solver::assessStability(compiled.model, &compiled.state);
+      st.worst < st.pairs.size()) {
+    const solver::PairStability& p = st.pairs[st.worst];
+    // Marginal is where the default functions run at the default 8 substeps (every
+    // example is): stable in the estimate's model, with less than its factor 2 in hand.
+    const std::string need = st.minimumSubsteps > 0 ? fmt::format("{} substeps", st.minimumSubsteps)
+                                                    : std::string("no count up to 10,000");
+    const std::string verdict =
+        st.verdict == solver::StabilityVerdict::Stable
+            ? fmt::format("stable at {} substeps, with a factor 2 in the time step to spare ({} would do)",
+                          st.substeps, need)
+        : st.verdict == solver::StabilityVerdict::Marginal
+            ? fmt::format(
+                  "marginal at {} substeps: stable, with less than a factor 2 in the time step to spare "
+                  "({} for that)",
+                  st.substeps, need)
+            : fmt::format("unstable at {} substeps: expect a blow-up ({} for a factor 2 to spare)",
+                          st.substeps, need);
+    fmt::print("stability (the estimate): {}; most demanding pair {} / {}\n", verdict, p.first, p.second);
+  }
   if (d.environment) {
     const auto& e = *d.environment;
     fmt::print("environment: box x [{:g}, {:g}]  y [0, {:g}]  z [{:g}, {:g}], {} top; {}\n", -e.width / 2,
@@ -83,6 +108,14 @@ void printSceneInfo(const std::string& path) {
         leftOut > 0 ? fmt::format("; {} fill points inside objects left out", groupThousands(leftOut)) : "",
         describeBox(boxes[f]));
     fmt::print("    {}\n", describeFields(fluid, {"Name", "NumberOfParticles"}));
+    // A <Pair> of the fluid with itself replaces its own function and viscosity: the
+    // fields above that make them are then not what the run uses.
+    if (std::any_of(d.interactions.pairs.begin(), d.interactions.pairs.end(),
+                    [&](const scene::PairDesc& p) { return p.a == fluid.name && p.b == fluid.name; }))
+      fmt::print(
+          "    not used: InteractionDistance, Amplitude, FiniteDistance, MinimumForce, MaximumForce and "
+          "Viscosity (pair {} / {} below replaces its own function and viscosity)\n",
+          fluid.name, fluid.name);
   }
 
   if (!d.objects.empty()) {
@@ -99,6 +132,17 @@ void printSceneInfo(const std::string& path) {
       scene::ObjectDesc shown = obj;
       shown.particleSize = 2 * body.particleRadius;
       fmt::print("    {}\n", describeFields(shown, {"Name", "Geometry", "Mass", "IsDynamic"}));
+      // A primitive without Size stands in for the inertia at a size fitted to the mesh.
+      if (obj.size.empty() && obj.shape != scene::ObjectShape::Mesh && o < compiled.objectMeshes.size()) {
+        const Aabb own = compiled.objectMeshes[o].bounds();
+        Aabb scaled;
+        for (int a = 0; a < 3; ++a) {
+          scaled.lo[a] = own.lo[a] * obj.uniformScale;
+          scaled.hi[a] = own.hi[a] * obj.uniformScale;
+        }
+        fmt::print("    Size {:g} (fitted to the mesh's bounding box, for the inertia)\n",
+                   fmt::join(scene::inertiaPrimitiveSize(obj, scaled), " "));
+      }
     }
   }
 

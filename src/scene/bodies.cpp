@@ -44,6 +44,17 @@ std::vector<double> primitiveSize(const ObjectDesc& o, const Aabb& box) {
   return {};
 }
 
+}  // namespace
+
+std::vector<double> inertiaPrimitiveSize(const ObjectDesc& o, const Aabb& scaledBox) {
+  std::vector<double> size = primitiveSize(o, scaledBox);
+  if (!o.size.empty())
+    for (double& v : size) v *= o.uniformScale;
+  return size;
+}
+
+namespace {
+
 struct Mass {
   Vec3 center{0, 0, 0};  // centre of mass in scaled geometry coordinates
   Mat3 inertia = Mat3::Identity();
@@ -64,9 +75,7 @@ Mass massOf(const ObjectDesc& o, const geometry::TriangleMesh& scaled) {
     return m;
   }
   // A primitive stands in for the inertia: its Size scaled, or fitted to the scaled box.
-  std::vector<double> size = primitiveSize(o, box);
-  if (!o.size.empty())
-    for (double& v : size) v *= o.uniformScale;
+  const std::vector<double> size = inertiaPrimitiveSize(o, box);
   const bool fromMesh = !o.geometry.empty();
   m.center = fromMesh ? mid : Vec3::Zero();
   switch (o.shape) {

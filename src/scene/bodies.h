@@ -54,6 +54,12 @@ class ObjectShapes {
                         std::vector<geometry::TriangleMesh>&, std::vector<std::string>*);
 };
 
+/// The extents of the primitive that stands in for an object's inertia (radius | radius
+/// height | width height depth, scaled): its Size times UniformScale, or, without a
+/// Size, fitted to `scaledBox`, the bounding box of its mesh after UniformScale. Empty
+/// for Shape mesh.
+[[nodiscard]] std::vector<double> inertiaPrimitiveSize(const ObjectDesc& o, const Aabb& scaledBox);
+
 /// Appends every object of `desc` as a rigid body to the model (after the fluids:
 /// materials, interaction rows with every fluid) and its particles and state to `state`,
 /// from `shapes` (built from the same `desc`). `meshes` receives each object's

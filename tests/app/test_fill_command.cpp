@@ -40,6 +40,16 @@ TEST(FillCommand, SnippetIsAFluidTheReaderAccepts) {
   EXPECT_EQ(d.fluids[0].name, "cube");
   EXPECT_EQ(d.fluids[0].particles.size(), 27u);  // 3 x 3 x 3 lattice points inside
   EXPECT_DOUBLE_EQ(d.fluids[0].params.particleSize, 1.0);
+  // The lengths follow the spacing, written as a person would: 1.5 x 0.3 is
+  // 0.44999999999999996 in full; and a comment says what does not follow it.
+  const RunResult fine = runSoftsub("fill box.obj --spacing 0.3", tmp.path());
+  ASSERT_EQ(fine.code, 0) << fine.err;
+  EXPECT_NE(fine.out.find("<InteractionDistance>0.45</InteractionDistance>"), std::string::npos) << fine.out;
+  EXPECT_NE(fine.out.find("ParticleMass keep their defaults"), std::string::npos) << fine.out;
+  const scene::SceneDesc f =
+      scene::readSceneText("<Scene version=\"1\">\n" + fine.out + "</Scene>\n", "fine.scene");
+  EXPECT_NEAR(f.fluids[0].params.interactionDistance, 0.45, 1e-15);
+  EXPECT_DOUBLE_EQ(f.fluids[0].params.finiteDistance, 0.3);
   // Well-formed XML for strict parsers too: no "--" inside a comment, even when the mesh's
   // name has one or ends in '-' (the comment used to quote the command line, "--spacing").
   writeBoxObj(tmp / "a--b-.obj", 3.0);

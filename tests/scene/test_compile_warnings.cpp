@@ -81,6 +81,67 @@ std::string object(const std::string& name, const std::string& position, bool dy
          "</IsDynamic></Object>";
 }
 
+// The walls keep a fluid's centres half its ParticleSize in: a fill flush with the walls
+// at a spacing below the size starts its outer layers inside that margin, and the first
+// substep moves them into their neighbours at once (a total energy of 976 became 31,392
+// in a frame; a review). Counted apart from the particles outside the box, and only past
+// a tenth of the size, so a fill at its own ParticleSize stays silent.
+TEST(CompileWarnings, CountsTheParticlesThatStartWithinTheWallsMargin) {
+  const std::string box6 = "<Environment><Width>6</Width><Height>6</Height><Depth>6</Depth></Environment>\n";
+  const auto flush = [&](const std::string& size, const std::string& spacing) {
+    return warningsOf(box6 + "<Fluid><Name>w</Name><ParticleSize>" + size +
+                      "</ParticleSize><FiniteDistance>" + spacing +
+                      "</FiniteDistance><InteractionDistance>1.5</InteractionDistance>" +
+                      "<Fill><Shape>box</Shape><Min>-3 0 -3</Min><Max>3 3 3</Max><Spacing>" + spacing +
+                      "</Spacing></Fill></Fluid>");
+  };
+  // Spacing 0.5 in a 6-wide box: 12 x 6 x 12 points, centres 0.25 from the walls; with
+  // ParticleSize 1 the walls keep them 0.5 in. Every point of the outer shell (the open
+  // top's layer excepted) is in the margin: 864 - 10 x 5 x 10 = 364.
+  const std::vector<std::string> w = flush("1", "0.5");
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(w[0].find("Fluid 'w': 364 of 864 particles start nearer the container's walls than half their "
+                      "ParticleSize 1"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("(by up to 0.25)"), std::string::npos) << w[0];
+  // At its own ParticleSize, or a little above it, the fill is where the walls keep it.
+  EXPECT_TRUE(flush("0.5", "0.5").empty());
+  EXPECT_TRUE(flush("0.55", "0.5").empty());
+  // Moved half a ParticleSize in, the same fill is calm and unwarned.
+  EXPECT_TRUE(
+      warningsOf(box6 + "<Fluid><Name>w</Name><FiniteDistance>0.5</FiniteDistance>"
+                        "<InteractionDistance>1.5</InteractionDistance><Fill><Shape>box</Shape>"
+                        "<Min>-2.5 0.5 -2.5</Min><Max>2.5 3.5 2.5</Max><Spacing>0.5</Spacing></Fill></Fluid>")
+          .empty());
+}
+
+// A fluid whose own force is zero at or past its cutoff only pushes: a ball with
+// FiniteDistance 2 and the default InteractionDistance 1.5 flew apart without a word (a
+// review). Not when a <Pair> of the fluid with itself replaces that function.
+TEST(CompileWarnings, NamesAFiniteDistanceNotBelowTheInteractionDistance) {
+  const auto ball = [](const std::string& params, const std::string& pairs) {
+    return warningsOf(
+        "<Fluid><Name>a</Name>" + params +
+        "<Fill><Shape>sphere</Shape><Center>0 3 0</Center><Radius>2</Radius><Spacing>2</Spacing>"
+        "</Fill></Fluid>" +
+        pairs);
+  };
+  const std::vector<std::string> w = ball("<FiniteDistance>2</FiniteDistance>", "");
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(w[0].find("Fluid 'a' (line "), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("FiniteDistance 2 is not below InteractionDistance 1.5"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("(3)"), std::string::npos) << w[0];
+  EXPECT_EQ(ball("<FiniteDistance>1.5</FiniteDistance>", "").size(), 1u);  // equal: no attraction either
+  EXPECT_TRUE(
+      ball("<FiniteDistance>2</FiniteDistance><InteractionDistance>3</InteractionDistance>", "").empty());
+  EXPECT_TRUE(
+      ball("<FiniteDistance>2</FiniteDistance>",
+           "<Interactions><Pair><A>a</A><B>a</B><Linear><AtZero>5</AtZero><Cutoff>3</Cutoff><Min>0</Min>"
+           "<Max>5</Max></Linear></Pair></Interactions>")
+          .empty());
+}
+
 TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
   // The container spans x [-5, 5]: a body centred inside has none outside, one centred
   // on the wall about half, one beyond it all; a static one is told it stays there.
