@@ -67,11 +67,10 @@ std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
   // 1.5 S to 15 digits: 1.5 x 0.3 is 0.44999999999999996 in full.
   std::string s = fmt::format(
       "<!-- softsub fill of {} at spacing {}{}: {} particles -->\n"
-      "<!-- Lengths follow the spacing; Amplitude, the force clamps and ParticleMass keep their defaults, so "
-      "a\n"
-      "     spacing below 1 makes a denser, stiffer fluid that may need more Substeps: softsub info on the "
-      "scene\n"
-      "     gives the stability estimate and the count it asks for. -->\n"
+      "<!-- Lengths follow the spacing; Amplitude, the force clamps and ParticleMass keep\n"
+      "     their defaults, so a spacing below 1 makes a denser, stiffer fluid that may need\n"
+      "     more Substeps: softsub info on the scene gives the stability estimate and the\n"
+      "     count it asks for. -->\n"
       "<Fluid>\n"
       "  <Name>{}</Name>\n"
       "  <ParticleSize>{}</ParticleSize>\n"

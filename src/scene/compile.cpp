@@ -98,12 +98,10 @@ std::vector<std::string> initialStateWarnings(const solver::Model& m, const Part
                                   what, count, to - from, box));
       else if (near > 0)
         out.push_back(fmt::format(
-            "{}: {} of {} particles start nearer the container's walls than half their ParticleSize {:g}, "
-            "where "
-            "the walls keep their centres (by up to {:.3g}): the first substep moves them into their "
-            "neighbours, "
-            "with a jolt; start the fill half a ParticleSize inside the walls, or set ParticleSize to the "
-            "particles' spacing",
+            "{}: {} of {} particles start nearer the container's walls than half their ParticleSize "
+            "{:g}, where the walls keep their centres (by up to {:.3g}): the first substep moves them "
+            "into their neighbours, with a jolt; start the fill half a ParticleSize inside the walls, "
+            "or set ParticleSize to the particles' spacing",
             what, near, to - from, m.fluids[f].particleSize, deepest));
       from = to;
     }
@@ -301,10 +299,10 @@ std::vector<std::string> ownFunctionWarnings(const SceneDesc& d) {
                     [&](const PairDesc& q) { return q.a == f.name && q.b == f.name; }))
       continue;
     out.push_back(fmt::format(
-        "Fluid '{}' (line {}): FiniteDistance {:g} is not below InteractionDistance {:g}: its own force only "
-        "pushes its particles apart (up to MaximumForce {:g}) and never holds them together, and stops with "
-        "a "
-        "jump at the cutoff; InteractionDistance is usually about 1.5 times FiniteDistance ({:g})",
+        "Fluid '{}' (line {}): FiniteDistance {:g} is not below InteractionDistance {:g}: its own "
+        "force only pushes its particles apart (up to MaximumForce {:g}) and never holds them "
+        "together, and stops with a jump at the cutoff; InteractionDistance is usually about 1.5 "
+        "times FiniteDistance ({:g})",
         f.name, f.line, p.finiteDistance, p.interactionDistance, p.maximumForce, 1.5 * p.finiteDistance));
   }
   return out;

@@ -45,7 +45,7 @@ TEST(FillCommand, SnippetIsAFluidTheReaderAccepts) {
   const RunResult fine = runSoftsub("fill box.obj --spacing 0.3", tmp.path());
   ASSERT_EQ(fine.code, 0) << fine.err;
   EXPECT_NE(fine.out.find("<InteractionDistance>0.45</InteractionDistance>"), std::string::npos) << fine.out;
-  EXPECT_NE(fine.out.find("ParticleMass keep their defaults"), std::string::npos) << fine.out;
+  EXPECT_NE(fine.out.find("Amplitude, the force clamps and ParticleMass keep"), std::string::npos) << fine.out;
   const scene::SceneDesc f =
       scene::readSceneText("<Scene version=\"1\">\n" + fine.out + "</Scene>\n", "fine.scene");
   EXPECT_NEAR(f.fluids[0].params.interactionDistance, 0.45, 1e-15);
