@@ -161,9 +161,12 @@ void encodeMovie(const std::vector<std::filesystem::path>& pictures, double fps,
   std::filesystem::create_directory(links, ec);
   if (ec)
     throw IoError(fmt::format("cannot write {}: cannot make {}: {}", movie, links.string(), ec.message()));
+  // A symbolic link, else (a file system without them) a hard link, else a copy.
   for (std::size_t k = 0; k < pictures.size(); ++k) {
-    std::filesystem::create_symlink(std::filesystem::absolute(pictures[k]),
-                                    links / fmt::format("{:08}.png", k), ec);
+    const std::filesystem::path to = links / fmt::format("{:08}.png", k);
+    std::filesystem::create_symlink(std::filesystem::absolute(pictures[k]), to, ec);
+    if (ec) std::filesystem::create_hard_link(pictures[k], to, ec);
+    if (ec) std::filesystem::copy_file(pictures[k], to, ec);
     if (ec)
       throw IoError(
           fmt::format("cannot write {}: cannot link {}: {}", movie, pictures[k].string(), ec.message()));
