@@ -6,7 +6,7 @@ import re
 
 import bpy
 
-from . import axes, caches, schema, scenefile
+from . import axes, caches, results, schema, scenefile
 from .scenefile import SceneError
 
 num = schema.format_number
@@ -53,6 +53,14 @@ def _object_points(obj):
     if obj.type == "POINTCLOUD":
         return [tuple(mw @ p.co) for p in obj.data.points]
     raise SceneError(f"substance '{obj.name}': a {obj.type.lower()} has no points (use a mesh or a point cloud)")
+
+
+def _rotation_is_own(obj):
+    """Whether the object's world rotation is its rotation_euler alone: no delta rotation
+    and no enabled constraint (parents are refused)."""
+    return (all(abs(x) < 1e-12 for x in obj.delta_rotation_euler)
+            and abs(obj.delta_rotation_quaternion[0] - 1) < 1e-12
+            and not any(getattr(c, "enabled", True) and not getattr(c, "mute", False) for c in obj.constraints))
 
 
 def _uniform_scale(scale):
@@ -217,10 +225,18 @@ def _collect(context, name):
         if obj.type != "MESH":
             raise SceneError(f"{where}: only meshes can be rigid bodies")
         o = scenefile.new_object(obj.name)
-        loc, rot, scale = obj.matrix_world.decompose()
+        # A body showing imported results starts from where it was placed before them,
+        # not from a simulated frame at the start frame (results.remember_rest_pose).
+        from mathutils import Matrix
+        rest = results.rest_matrix_world(obj)
+        world = Matrix(rest) if rest is not None else obj.matrix_world
+        loc, rot, scale = world.decompose()
         uniform = _uniform_scale(scale)
         o["InitialPosition"] = axes.to_softsub(tuple(loc))
-        if obj.rotation_mode == "XZY":
+        # XZY (what Import .scene sets) maps its angles exactly, but only when they are
+        # the whole rotation: a delta rotation or a constraint adds to them (a review: a
+        # delta rotation was left out, 0.65 units off).
+        if rest is None and obj.rotation_mode == "XZY" and _rotation_is_own(obj):
             o["InitialRotation"] = axes.blender_xzy_to_softsub_euler(tuple(obj.rotation_euler))
         else:
             o["InitialRotation"] = axes.blender_matrix_to_softsub_euler(tuple(tuple(r) for r in rot.to_matrix()))
@@ -274,6 +290,11 @@ def _collect(context, name):
         for end in (p.a, p.b):
             if end.name not in names:
                 raise SceneError(f"interaction pair {i}: '{end.name}' is not a substance or rigid body of the scene")
+        bodies_named = {o["Name"] for o in model["objects"]}
+        if p.a.name in bodies_named and p.b.name in bodies_named:
+            raise SceneError(f"interaction pair {i}: '{p.a.name}' and '{p.b.name}' are both rigid bodies, which meet "
+                             "by impulses (their Normal and Tangent Attenuation), not by a function: choose a "
+                             "substance for one end")
         it = _interaction_model(p)
         it["A"], it["B"] = p.a.name, p.b.name
         model["pairs"].append(it)

@@ -98,6 +98,7 @@ def clear_results(sim_dir=None):
                 obj.animation_data.action = None
                 if act.users == 0:
                     bpy.data.actions.remove(act)
+            restore_rest_pose(obj)
             c.kind = "NONE"
         else:
             data = obj.data
@@ -110,6 +111,90 @@ def clear_results(sim_dir=None):
         n += 1
     _FRAME_CACHE.clear()
     return n
+
+
+REST_KEY = "softsub_rest_pose"
+
+
+def remember_rest_pose(obj):
+    """Before the first import keys a body: its own placement (rotation mode, location and
+    rotations, world matrix, and an action of the user's, kept with a fake user), so that
+    Clear puts it back and Export starts from it, not from a simulated frame (a review:
+    Clear left bodies at the last pose seen, and a moved start frame exported the previous
+    run's keyframe). Kept until Clear; a later import keeps the first one."""
+    if REST_KEY in obj:
+        return
+    ad = obj.animation_data
+    own = ad.action if ad is not None and ad.action is not None and not is_imported_action(ad.action) else None
+    if own is not None:
+        own.use_fake_user = True
+    obj[REST_KEY] = {
+        "mode": obj.rotation_mode,
+        "location": list(obj.location),
+        "rotation_euler": list(obj.rotation_euler),
+        "rotation_quaternion": list(obj.rotation_quaternion),
+        "rotation_axis_angle": list(obj.rotation_axis_angle),
+        "matrix_world": [x for row in obj.matrix_world for x in row],
+        "action": own.name if own is not None else "",
+    }
+
+
+def rest_matrix_world(obj):
+    """The world matrix a body was placed at before results were imported onto it (rows),
+    or None when it shows no imported keyframes."""
+    rest = obj.get(REST_KEY)
+    if rest is None or obj.softsub_cache.kind != "BODY":
+        return None
+    m = list(rest["matrix_world"])
+    return [m[0:4], m[4:8], m[8:12], m[12:16]]
+
+
+def restore_rest_pose(obj):
+    rest = obj.get(REST_KEY)
+    if rest is None:
+        return
+    obj.rotation_mode = rest["mode"]
+    obj.location = rest["location"]
+    obj.rotation_euler = rest["rotation_euler"]
+    obj.rotation_quaternion = rest["rotation_quaternion"]
+    obj.rotation_axis_angle = rest["rotation_axis_angle"]
+    if rest["action"]:
+        act = bpy.data.actions.get(rest["action"])
+        if act is not None:
+            if obj.animation_data is None:
+                obj.animation_data_create()
+            obj.animation_data.action = act
+    del obj[REST_KEY]
+
+
+def is_imported_action(action):
+    return action.name.startswith("softsub ")
+
+
+def _baked_scale_turn(obj):
+    """The quaternion (w, x, y, z) of D = diag(sign(det) sign(s_i)) for a body whose
+    scale export baked (see _create), None when there is none to make."""
+    s = [a * b for a, b in zip(obj.scale, obj.delta_scale)]
+    if all(x > 0 for x in s):
+        return None  # uniform and positive: not baked; positive: D is the identity
+    det = 1.0 if s[0] * s[1] * s[2] > 0 else -1.0
+    d = [det * (1.0 if x > 0 else -1.0) for x in s]
+    if d == [1.0, 1.0, 1.0]:
+        return None
+    axis = d.index(1.0)  # two entries are -1: a half turn about the third axis
+    q = [0.0, 0.0, 0.0, 0.0]
+    q[1 + axis] = 1.0
+    return tuple(q)
+
+
+def _quat_mul(a, b):
+    """Hamilton product a b of quaternions (w, x, y, z): b applied first."""
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (aw * bw - ax * bx - ay * by - az * bz,
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw)
 
 
 def _key_channels(action, path, group, frames, values_per_channel):
@@ -179,7 +264,14 @@ def _create(context, sim_dir, data):
             obj.scale = (poses[0][2],) * 3
             mark(obj, "BODY", name)
         else:
+            remember_rest_pose(obj)
             mark(obj, "BODY", name)
+        # A body whose scale export baked into its OBJ (not uniform and positive) keeps
+        # that scale in Blender: the keyed rotation must turn the OBJ's frame into the
+        # object's. Blender's decomposition of a mirroring matrix negates all three
+        # scales, so the two differ by D = diag(sign(det) sign(s_i)), a half turn about
+        # one axis or none (a mirrored cone came back upside down: a review).
+        turn = _baked_scale_turn(obj) if obj.softsub_body.enabled else None
         obj.rotation_mode = "QUATERNION"
         if obj.animation_data is None:
             obj.animation_data_create()
@@ -189,6 +281,8 @@ def _create(context, sim_dir, data):
         quats, prev = [], None
         for p in poses:
             q = axes.quat_to_blender(p[1])
+            if turn is not None:
+                q = _quat_mul(q, turn)
             if prev is not None and sum(a * b for a, b in zip(q, prev)) < 0:
                 q = tuple(-x for x in q)  # the shorter way, so interpolation does not flip
             quats.append(q)

@@ -1,0 +1,105 @@
+"""Bodies' poses through the add-on, headless (a black-box review, thirty-first session):
+a body with a mirroring scale is shown where softsub simulates it after the import; Clear
+puts a body back where it was placed, in its own rotation mode; Export starts a body from
+that placement, not from imported keyframes, even when the start frame moves; a body in
+rotation mode XZY with a delta rotation is exported at the pose the viewport shows; a
+pair of two rigid bodies is refused at Export, as softsub refuses it.
+
+blender -b --factory-startup --python-exit-code 1 --python poses.py -- \
+    --softsub SOFTSUB --zip softsub_blender.zip --work DIR"""
+import math
+import os
+import sys
+
+import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_test_util import args, check, close, empty_scene, finish, install_addon  # noqa: E402
+
+A = args()
+install_addon(A)
+from softsub_blender import bl_scene, scenefile  # noqa: E402  (the installed copy)
+
+work = A["work"]
+empty_scene()
+scene = bpy.context.scene
+scene.frame_start = 1
+scene.frame_end = 4
+s = scene.softsub
+s.scene_path = os.path.join(work, "poses.scene")
+s.use_container = False
+s.substeps = 8
+
+
+def world_vertices(obj):
+    return [tuple(obj.matrix_world @ v.co) for v in obj.data.vertices]
+
+
+def same_points(a, b, tol):
+    return len(a) == len(b) and all(close(p, q, tol) for p, q in zip(a, b))
+
+
+# A static cone mirrored in X, a static cone in mode XZY with a delta rotation, and a
+# dynamic cube that falls (so something moves).
+bpy.ops.mesh.primitive_cone_add(radius1=1, depth=2, location=(0, 0, 3))
+mirror = bpy.context.active_object
+mirror.name = "mirror"
+mirror.scale = (-1, 1, 1.5)
+bpy.ops.softsub.make_body(dynamic=False)
+bpy.ops.mesh.primitive_cone_add(radius1=1, depth=2, location=(4, 0, 5))
+xzy = bpy.context.active_object
+xzy.name = "xzy"
+xzy.rotation_mode = "XZY"
+xzy.rotation_euler = (0.2, 0.3, 0.4)
+xzy.delta_rotation_euler = (0, 0, 0.5)
+bpy.ops.softsub.make_body(dynamic=False)
+bpy.ops.mesh.primitive_cube_add(size=1, location=(-4, 1, 6), rotation=(0.3, 0.2, 0.1))
+cube = bpy.context.active_object
+cube.name = "cube"
+bpy.ops.softsub.make_body(dynamic=True)
+bpy.context.view_layer.update()
+before = {o.name: world_vertices(o) for o in (mirror, xzy, cube)}
+cube_placed = (tuple(cube.location), cube.rotation_mode, tuple(cube.rotation_euler))
+
+res = bpy.ops.softsub.run(wait=True)
+check(res == {"FINISHED"}, f"run: {res}")
+scene.frame_set(scene.frame_start)
+# Static bodies are where they were placed, mirrored or turned by a delta rotation.
+for o in (mirror, xzy):
+    check(same_points(world_vertices(o), before[o.name], 1e-4), f"{o.name}: moved by the import")
+check(cube.animation_data is not None and cube.animation_data.action is not None, "the cube has no keyframes")
+scene.frame_set(scene.frame_end)
+check(cube.location.z < cube_placed[0][2] - 0.05, f"the cube did not fall: z {cube.location.z}")
+
+# Export with the imported keys on, from another start frame: the cube starts where it
+# was placed, not at a keyframe.
+scene.frame_start = 3
+model, _ = bl_scene.collect(bpy.context)
+scene.frame_start = 1
+cube_model = next(o for o in model["objects"] if o["Name"] == "cube")
+check(close(cube_model["InitialPosition"], (-4.0, 6.0, -1.0), 1e-5),
+      f"exported from a keyframe: InitialPosition {cube_model['InitialPosition']}")
+
+# Clear: the cube is back where it was placed, in its own rotation mode.
+scene.frame_set(scene.frame_end)
+res = bpy.ops.softsub.clear_results()
+check(res == {"FINISHED"}, f"clear_results: {res}")
+check(cube.animation_data is None or cube.animation_data.action is None, "keyframes left after Clear")
+check(cube.rotation_mode == cube_placed[1], f"rotation mode {cube.rotation_mode} after Clear")
+check(close(tuple(cube.location), cube_placed[0], 1e-6), f"location {tuple(cube.location)} after Clear")
+check(close(tuple(cube.rotation_euler), cube_placed[2], 1e-6), f"rotation {tuple(cube.rotation_euler)} after Clear")
+bpy.context.view_layer.update()
+check(same_points(world_vertices(cube), before["cube"], 1e-5), "the cube is not where it was placed after Clear")
+check("softsub_rest_pose" not in cube, "the remembered pose is left after Clear")
+
+# A pair of two rigid bodies: softsub refuses it, and so does Export, naming both.
+pair = s.pairs.add()
+pair.a, pair.b = mirror, cube
+try:
+    bl_scene.collect(bpy.context)
+    check(False, "a pair of two rigid bodies was exported")
+except scenefile.SceneError as e:
+    check("'mirror' and 'cube' are both rigid bodies" in str(e), f"the refusal does not name them: {e}")
+s.pairs.remove(len(s.pairs) - 1)
+
+finish()
