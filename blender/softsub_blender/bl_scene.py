@@ -45,11 +45,30 @@ def _evaluated_mesh_data(obj, depsgraph):
     return verts, tris
 
 
-def _object_points(obj):
-    """World positions of a substance's points: mesh vertices or point cloud points."""
+def _object_points(obj, context):
+    """World positions of a substance's points: the mesh's vertices with its modifiers
+    applied, as the viewport shows them and as bodies and fills take them (the base
+    vertices were exported: 8 points for an Array modifier's 24; a review), but for the
+    add-on's own display as points, which turns the mesh into a point cloud; or point
+    cloud points."""
     mw = obj.matrix_world
     if obj.type == "MESH":
-        return [tuple(mw @ v.co) for v in obj.data.vertices]
+        from . import display
+        own = [m for m in obj.modifiers if m.name != display.GROUP and m.show_viewport]
+        if not own:
+            return [tuple(mw @ v.co) for v in obj.data.vertices]
+        shown = obj.modifiers.get(display.GROUP)
+        was = shown.show_viewport if shown is not None else None
+        try:
+            if shown is not None and was:
+                shown.show_viewport = False
+                context.view_layer.update()
+            verts, _ = _evaluated_mesh_data(obj, context.evaluated_depsgraph_get())
+        finally:
+            if shown is not None and was:
+                shown.show_viewport = True
+                context.view_layer.update()
+        return [tuple(mw @ _vec(v)) for v in verts]
     if obj.type == "POINTCLOUD":
         return [tuple(mw @ p.co) for p in obj.data.points]
     raise SceneError(f"substance '{obj.name}': a {obj.type.lower()} has no points (use a mesh or a point cloud)")
@@ -176,7 +195,7 @@ def _collect(context, name):
         if fp.minimum_force > fp.maximum_force:
             raise SceneError(f"{where}: MinimumForce {num(fp.minimum_force)} is above MaximumForce "
                              f"{num(fp.maximum_force)}")
-        f["Particles"] = [axes.to_softsub(p) for p in _object_points(obj)]
+        f["Particles"] = [axes.to_softsub(p) for p in _object_points(obj, context)]
         for fo in fills:
             if fo.softsub_fill.fluid != obj:
                 continue

@@ -113,6 +113,19 @@ def clear_results(sim_dir=None):
     return n
 
 
+def stored_path(path):
+    """A results path as the .blend keeps it: relative to the .blend ("//...") once it is
+    saved, so that a copied project plays its own results (with absolute paths a copy
+    played the original's, and Run added a second point cloud beside them: a review);
+    absolute for an unsaved .blend or another drive."""
+    if not bpy.data.filepath:
+        return path
+    try:
+        return bpy.path.relpath(path)
+    except ValueError:
+        return path
+
+
 REST_KEY = "softsub_rest_pose"
 
 
@@ -246,7 +259,7 @@ def _create(context, sim_dir, data):
 
     def mark(obj, kind, item):
         c = obj.softsub_cache
-        c.kind, c.sim_dir, c.scene_name, c.item_name = kind, sim_dir, scan["scene"], item
+        c.kind, c.sim_dir, c.scene_name, c.item_name = kind, stored_path(sim_dir), scan["scene"], item
         c.frame_offset, c.last_frame = offset, last
 
     bodies = 0
@@ -317,7 +330,7 @@ def _create(context, sim_dir, data):
         mesh.materials.append(display.fluid_material(f"softsub {name}", fp["Colour"] if fp else (0.8, 0.5, 0.2)))
     for name, files in scan["vdb"].items():
         vol = bpy.data.volumes.new(f"{name}_vdb")
-        vol.filepath = files[scan["frames"][0]]
+        vol.filepath = stored_path(files[scan["frames"][0]])
         vol.is_sequence = True
         vol.frame_duration = len(scan["frames"])
         vol.frame_start = offset

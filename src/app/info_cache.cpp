@@ -4,6 +4,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 #include "core/aabb.h"
 #include "core/error.h"
 #include "run_journal.h"
+#include "session/playback.h"
 #include "solver/checkpoint.h"
 #include "text_format.h"
 
@@ -127,9 +129,27 @@ void printCheckpointInfo(const std::string& path) {
 void printRunFolderInfo(const std::string& dirText) {
   const std::filesystem::path dir(dirText);
   const std::vector<std::string> names = cache::manifestSceneNames(dir);
-  if (names.empty())
-    throw InputError({dirText, 0, {}}, "no manifest/ with frame manifests: not a softsub run's output folder",
-                     "a folder `softsub run` wrote (it has manifest/<scene>.NNNN.manifest files)");
+  if (names.empty()) {
+    // Frames without manifests (the viewer's S writes none; an older softsub's run): what
+    // render, mesh and the add-on would play, said as such rather than refused.
+    std::optional<session::Playback> frames;
+    try {
+      frames.emplace(dir);
+    } catch (const InputError&) {}
+    if (!frames)
+      throw InputError(
+          {dirText, 0, {}},
+          "no manifest/ with frame manifests and no .sim frames: not a softsub "
+          "output folder",
+          "a folder `softsub run` or the viewer's S wrote (.sim frames, manifest/<scene>.NNNN.manifest)");
+    fmt::print(
+        "frames of {} in {}: {} frame{}, {}..{}, without manifests (as the viewer's S writes them): "
+        "render, mesh and the Blender add-on play them; run --resume has nothing to continue\n",
+        frames->sceneName(), dirText, frames->frameCount(), frames->frameCount() == 1 ? "" : "s",
+        frames->frameNumbers().front(), frames->frameNumbers().back());
+    for (const std::string& note : frames->notes()) fmt::print("  {}\n", note);
+    return;
+  }
   for (const std::string& name : names) {
     const RunFrames run = readRunFrames(dir, name);
     fmt::print("run {} in {}: ", name, dirText);

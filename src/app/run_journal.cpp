@@ -260,6 +260,10 @@ std::size_t forgetEarlierRun(const std::filesystem::path& outDir, const std::str
   if (removed > 0)
     for (const std::string_view folder : kFrameFolders)
       if (std::error_code ec; fs::is_empty(outDir / folder, ec) && !ec) removeQuietly(outDir / folder);
+  // So do the journal's folders once empty (the viewer's S, which writes no journal,
+  // left them; a run makes them again as it writes).
+  for (const std::string_view folder : {"manifest", "checkpoint"})
+    if (std::error_code ec; fs::is_empty(outDir / folder, ec) && !ec) removeQuietly(outDir / folder);
   return removed;
 }
 

@@ -317,7 +317,13 @@ void Viewer::runScript() {
             throw InputError({options_.script, c.line, "set"}, "a recording has no parameters to set",
                              "set commands with a .scene input");
           session::applySetCommand(c, session_->editableDesc(), options_.script);
-          applyEdits();
+          // An edit the scene's rules refuse (MinimumForce above MaximumForce) is this
+          // line's error: said with the script's file and line (a review).
+          if (std::optional<InputError> refused; applyEdits(&refused), refused)
+            throw InputError(
+                {options_.script, c.line, "set"},
+                fmt::format("the edit is refused: {}: {}", refused->where().element, refused->problem()),
+                refused->allowed());
           break;
         case session::ScriptCommandKind::Key: {
           const int key = keyOf(c.args.at(0));

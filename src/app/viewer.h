@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cmd_view.h"
+#include "core/error.h"
 #include "core/snapshot.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
@@ -64,7 +65,9 @@ class Viewer {
   void drawPlaybackPanel();
   void drawHelpOverlay();
   void drawTransport(const char* restartLabel);  // play/pause, step, restart buttons
-  void applyEdits();              // after a widget changed the scene description
+  // After a widget or a script changed the scene description. A refused edit goes to
+  // `refused` when given (a script's line says it), else to the message.
+  void applyEdits(std::optional<InputError>* refused = nullptr);
   void refreshStability();
 
   ViewOptions options_;

@@ -233,7 +233,7 @@ bool editInteraction(const char* id, scene::InteractionDesc& d) {
 
 }  // namespace
 
-void Viewer::applyEdits() {
+void Viewer::applyEdits(std::optional<InputError>* refused) {
   editsPending_ = false;
   lastApply_ = std::chrono::steady_clock::now();
   if (!live()) return;
@@ -242,7 +242,8 @@ void Viewer::applyEdits() {
     if (result == session::EditResult::Restarted) setMessage("the edit changed the particles: restarted at frame 0");
     else if (messageIsError_) setMessage("");
   } catch (const InputError& e) {
-    setMessage(e.what(), true);
+    if (refused) refused->emplace(e);
+    else setMessage(e.what(), true);
   }
   refreshStability();
 }

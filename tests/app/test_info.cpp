@@ -108,6 +108,29 @@ TEST(Info, SaysWhatAPairReplacesAndTheSizeFittedToAMesh) {
   expectContains(r.out, "    Size 3 3 3 (fitted to the mesh's bounding box, for the inertia)\n");
 }
 
+// A folder of .sim frames without manifests (the viewer's S writes none) was refused as
+// "not a softsub run's output folder", though render, mesh and the add-on play it (a
+// review): info says what it holds. A folder without frames is still refused.
+TEST(Info, AFolderOfFramesWithoutManifestsIsDescribedNotRefused) {
+  TempDir tmp;
+  const RunResult run =
+      runSoftsub("run " + quote(examplesDir() / "two-fluids.scene") + " --frames 3 --formats sim -q --out o",
+                 tmp.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  fs::create_directories(tmp / "bare");
+  for (int f = 0; f <= 3; ++f) {
+    const std::string name = fmt::format("two-fluids.{:04}.sim", f);
+    fs::copy_file(tmp / "o" / name, tmp / "bare" / name);
+  }
+  const RunResult r = runSoftsub("info bare", tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  expectContains(r.out, "frames of two-fluids in bare: 4 frames, 0..3, without manifests");
+  fs::create_directories(tmp / "empty");
+  const RunResult none = runSoftsub("info empty", tmp.path());
+  EXPECT_EQ(none.code, 2) << none.err;
+  expectContains(none.err, "not a softsub output folder");
+}
+
 // An object without <ParticleSize> is filled with particles of 1/20 of its largest extent;
 // info printed the unset field as 'ParticleSize 0' (a value the schema refuses) next to
 // the real diameter. It prints the size used.

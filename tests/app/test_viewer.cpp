@@ -138,6 +138,12 @@ TEST(Viewer, KeySInAnEarlierRunsFolderRemovesThatRunsJournal) {
   EXPECT_TRUE(fs::is_regular_file(out / "honey-drop.0002.sim"));
   EXPECT_TRUE(cache::manifestFrames(out, "honey-drop").empty());
   EXPECT_TRUE(cache::checkpointFrames(out, "honey-drop").empty());
+  // Nor their empty folders (a review), and info describes the viewer's frames.
+  EXPECT_FALSE(fs::exists(out / "manifest"));
+  EXPECT_FALSE(fs::exists(out / "checkpoint"));
+  const RunResult info = runSoftsub("info " + quote(out), tmp.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("frames of honey-drop in "), std::string::npos) << info.out;
   // So a resumed run starts over at frame 0 instead of mixing the two simulations.
   const RunResult resumed =
       runSoftsub("run " + quote(scene) + " --frames 4 --formats sim -q --resume", tmp.path());
@@ -449,7 +455,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadScript{"UnknownTag", "set fluid %FLUID% Stickiness 3\nsave never.scene\nquit\n", 1, "Stickiness"},
         BadScript{"UnknownFluid", "frames 1\nset fluid no-such-fluid Viscosity 2\nsave never.scene\nquit\n",
                   2, "no-such-fluid"},
-        BadScript{"FramesNotACount", "frames many\nsave never.scene\nquit\n", 1, "frames"}),
+        BadScript{"FramesNotACount", "frames many\nsave never.scene\nquit\n", 1, "frames"},
+        // A value in range on its own that the scene's rules refuse (MinimumForce above
+        // MaximumForce) was said without the script's file and line (a review).
+        BadScript{"MinimumForceAboveMaximum",
+                  "frames 1\nset fluid %FLUID% MinimumForce 5000\nsave never.scene\nquit\n", 2,
+                  "the edit is refused"}),
     [](const auto& p) { return p.param.name; });
 
 }  // namespace

@@ -92,6 +92,36 @@ bpy.context.view_layer.update()
 check(same_points(world_vertices(cube), before["cube"], 1e-5), "the cube is not where it was placed after Clear")
 check("softsub_rest_pose" not in cube, "the remembered pose is left after Clear")
 
+# A substance is exported as the viewport shows it, modifiers applied (its base vertices
+# were: 8 points for an Array modifier's 24), also once Run has hidden it.
+bpy.ops.mesh.primitive_cube_add(size=1, location=(0, 3, 8))
+goo = bpy.context.active_object
+goo.name = "goo"
+goo.modifiers.new("arr", "ARRAY").count = 3
+bpy.ops.softsub.make_substance()
+model, _ = bl_scene.collect(bpy.context)
+check(len(next(f for f in model["fluids"] if f["Name"] == "goo")["Particles"]) == 24, "goo: not its 24 points")
+res = bpy.ops.softsub.run(wait=True)
+check(res == {"FINISHED"}, f"run with goo: {res}")
+check(goo.hide_get(), "Run did not hide the substance")
+model, _ = bl_scene.collect(bpy.context)
+check(len(next(f for f in model["fluids"] if f["Name"] == "goo")["Particles"]) == 24,
+      "goo: not its 24 points once hidden")
+bpy.ops.softsub.clear_results()
+
+# Saved, the .blend keeps the results folder relative to itself, so a copy of the project
+# plays its own results (with absolute paths it played the original's).
+bpy.ops.wm.save_as_mainfile(filepath=os.path.join(work, "poses.blend"))
+res = bpy.ops.softsub.run(wait=True)
+check(res == {"FINISHED"}, f"run after saving: {res}")
+points = bpy.data.objects.get("goo_sim")
+check(points is not None and points.softsub_cache.sim_dir.startswith("//"),
+      f"results folder not relative: {points.softsub_cache.sim_dir if points else None}")
+if points is not None:
+    check(os.path.samefile(bpy.path.abspath(points.softsub_cache.sim_dir), os.path.join(work, "posesSim")),
+          "the relative results folder is not the run's")
+bpy.ops.softsub.clear_results()
+
 # A pair of two rigid bodies: softsub refuses it, and so does Export, naming both.
 pair = s.pairs.add()
 pair.a, pair.b = mirror, cube
