@@ -251,6 +251,12 @@ def _collect(context, name):
         world = Matrix(rest) if rest is not None else obj.matrix_world
         loc, rot, scale = world.decompose()
         uniform = _uniform_scale(scale)
+        # The object's own scale, as the panel holds it, where it is uniform: the
+        # decomposition of a turned matrix gave 0.99999994 for 1 (a review). Imports key
+        # no scale, so it is also the scale a body was placed with.
+        own = [a * b for a, b in zip(obj.scale, obj.delta_scale)]
+        if uniform is not None and own[0] > 0 and own[0] == own[1] == own[2]:
+            uniform = own[0]
         o["InitialPosition"] = axes.to_softsub(tuple(loc))
         # XZY (what Import .scene sets) maps its angles exactly, but only when they are
         # the whole rotation: a delta rotation or a constraint adds to them (a review: a

@@ -77,6 +77,8 @@ scene.frame_start = 3
 model, _ = bl_scene.collect(bpy.context)
 scene.frame_start = 1
 cube_model = next(o for o in model["objects"] if o["Name"] == "cube")
+# Its scale is the panel's 1, not what decomposing its turned matrix leaves.
+check(cube_model["UniformScale"] == 1.0, f"UniformScale {cube_model['UniformScale']!r}")
 check(close(cube_model["InitialPosition"], (-4.0, 6.0, -1.0), 1e-5),
       f"exported from a keyframe: InitialPosition {cube_model['InitialPosition']}")
 
