@@ -156,8 +156,10 @@ def rest_matrix_world(obj):
     """The world matrix a body was placed at before results were imported onto it (rows),
     or None when it shows no imported keyframes."""
     rest = obj.get(REST_KEY)
-    if rest is None or obj.softsub_cache.kind != "BODY":
-        return None
+    ad = obj.animation_data
+    keyed = ad is not None and ad.action is not None and is_imported_action(ad.action)
+    if rest is None or obj.softsub_cache.kind != "BODY" or not keyed:
+        return None  # (keys removed by hand: the object is where the user puts it)
     m = list(rest["matrix_world"])
     return [m[0:4], m[4:8], m[8:12], m[12:16]]
 
