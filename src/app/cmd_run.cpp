@@ -307,6 +307,15 @@ int runCommand(const RunOptions& o) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", shownFile, w);
     if (unstable) fmt::print(stderr, "warning: {}: {}\n", shownFile, *unstable);
+    // The seed ran until -stopRecordingAt; here the scene's Frames ends the run first
+    // (a seed scene has none: 120 by default), which a review found stopping at 120 of 300.
+    if (o.stopRecordingAt > loaded.desc.simulation.frames)
+      fmt::print(
+          stderr,
+          "warning: {}: --stop-recording-at {} is past the scene's last frame {} (<Simulation><Frames>, "
+          "{} when left out): the run ends at frame {}; give --frames {} to simulate up to it\n",
+          shownFile, o.stopRecordingAt, loaded.desc.simulation.frames, scene::SimulationDesc{}.frames,
+          loaded.desc.simulation.frames, o.stopRecordingAt);
     // Maya finds a PDC cache by its particle shape's name, and its node names hold no
     // '-' and do not start with a digit: no shape can take such a fluid's files.
     if (formats.pdc)

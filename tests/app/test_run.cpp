@@ -207,6 +207,23 @@ TEST(Run, StopRecordingAtBeyondTheLastFrameRunsTheScene) {
                                  tmp.path());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(listFrameFiles(tmp / "o").size(), 3u);
+  // The seed ran to -stopRecordingAt; here the scene's last frame comes first, which is
+  // said (a seed scene, with no <Frames>, stopped at 120 of 300 without a word: a review).
+  const RunResult said =
+      runSoftsub("-f " + quote(examplesDir() / "two-fluids.scene") +
+                     " --frames 2 -stopRecordingAt 10 --formats sim --out " + quote(tmp / "p"),
+                 tmp.path());
+  EXPECT_EQ(said.code, 0) << said.err;
+  EXPECT_NE(said.err.find("warning: "), std::string::npos) << said.err;
+  EXPECT_NE(said.err.find("--stop-recording-at 10 is past the scene's last frame 2"), std::string::npos)
+      << said.err;
+  EXPECT_NE(said.err.find("give --frames 10"), std::string::npos) << said.err;
+  const RunResult within =
+      runSoftsub("-f " + quote(examplesDir() / "two-fluids.scene") +
+                     " --frames 4 -stopRecordingAt 2 --formats sim --out " + quote(tmp / "q"),
+                 tmp.path());
+  EXPECT_EQ(within.code, 0) << within.err;
+  EXPECT_TRUE(within.err.empty()) << within.err;
 }
 
 // Issue 2: "quiet when not a terminal or with --quiet". A pipe, a file or a farm log
