@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cstdint>
+#include <string>
 
 namespace softsub::scene {
 
@@ -137,8 +139,52 @@ bool isNameEnd(char c) { return isSpace(c) || c == '/' || c == '>'; }
 
 }  // namespace
 
+namespace {
+
+// The encoding an XML declaration at the start names ("" when none): scene files are
+// UTF-8, and a file that declares another encoding was refused over its first byte
+// outside ASCII as "invalid UTF-8", without a word about the declaration, or read as
+// UTF-8 whatever it declared (a review).
+std::string declaredEncoding(std::string_view text, std::size_t& at) {
+  std::size_t start = text.starts_with("\xEF\xBB\xBF") ? 3 : 0;
+  if (text.substr(start, 5) != "<?xml") return {};
+  const std::size_t end = text.find("?>", start);
+  const std::string_view decl =
+      text.substr(start, end == std::string_view::npos ? text.size() - start : end - start);
+  const std::size_t key = decl.find("encoding");
+  if (key == std::string_view::npos) return {};
+  std::size_t i = key + 8;
+  while (i < decl.size() &&
+         (decl[i] == ' ' || decl[i] == '\t' || decl[i] == '\r' || decl[i] == '\n' || decl[i] == '='))
+    ++i;
+  if (i >= decl.size() || (decl[i] != '"' && decl[i] != '\'')) return {};
+  const char quote = decl[i];
+  const std::size_t close = decl.find(quote, i + 1);
+  if (close == std::string_view::npos) return {};
+  at = start + key;
+  return std::string(decl.substr(i + 1, close - i - 1));
+}
+
+}  // namespace
+
 XmlTextCheck checkXmlText(std::string_view text) {
   XmlTextCheck out;
+  {
+    std::size_t at = 0;
+    std::string encoding = declaredEncoding(text, at);
+    std::string lower = encoding;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!encoding.empty() && lower != "utf-8" && lower != "utf8" && lower != "us-ascii" && lower != "ascii") {
+      out.offset = at;
+      out.problem =
+          fmt::format("the file declares the encoding '{}'; scene files are read as UTF-8", encoding);
+      out.allowed = fmt::format(
+          "UTF-8 text, declared as such or not at all (convert it, e.g. iconv -f {} -t "
+          "UTF-8 FILE, and change the declaration)",
+          encoding);
+      return out;
+    }
+  }
   if (!checkCharacters(text, out)) return out;
 
   const auto fail = [&](std::size_t at, std::string problem, std::string_view allowed) {
