@@ -131,6 +131,35 @@ TEST(Info, AFolderOfFramesWithoutManifestsIsDescribedNotRefused) {
   expectContains(none.err, "not a softsub output folder");
 }
 
+// A cylinder fitted to a mesh has its axis along y: a rod modelled along z took the
+// inertia of a disc four times its volume without a word (a review). A box 1 x 1 x 4
+// stands in for the rod: as a fitted cylinder (radius 2, height 1) it holds 3.1 times its
+// volume, and is named; as a fitted box, or with Size, or as Shape mesh, it is not.
+TEST(Info, APrimitiveFittedFarFromItsMeshsVolumeIsNamed) {
+  TempDir tmp;
+  scenarios::writeTextFile(tmp / "rod.obj",
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 4\nv 1 0 4\nv 0 1 4\nv 1 1 4\n"
+                           "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n");
+  const auto info = [&](const std::string& object) {
+    std::ofstream(tmp / "rod.scene") << "<Scene version=\"1\"><Environment/><Object><Name>rod</Name>"
+                                     << object
+                                     << "<Geometry>rod.obj</Geometry><InitialPosition>0 3 0</InitialPosition>"
+                                        "</Object></Scene>\n";
+    const RunResult r = runSoftsub("info rod.scene", tmp.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.err;
+  };
+  const std::string cylinder = info("<Shape>cylinder</Shape>");
+  EXPECT_NE(
+      cylinder.find("Object 'rod' (line 1): the cylinder fitted to its mesh for the inertia (Size 2 1) holds "
+                    "3.14 times the mesh's volume"),
+      std::string::npos)
+      << cylinder;
+  EXPECT_EQ(info("<Shape>box</Shape>"), "");
+  EXPECT_EQ(info("<Shape>cylinder</Shape><Size>0.5 4</Size>"), "");
+  EXPECT_EQ(info("<Shape>mesh</Shape>"), "");
+}
+
 // An object without <ParticleSize> is filled with particles of 1/20 of its largest extent;
 // info printed the unset field as 'ParticleSize 0' (a value the schema refuses) next to
 // the real diameter. It prints the size used.
