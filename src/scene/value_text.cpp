@@ -93,8 +93,7 @@ class ValueParser {
       }
       case Kind::PointList: {
         if (tokens_.size() % 3 != 0) {
-          bad(fmt::format("{} numbers do not make whole positions (3 numbers each)",
-                          tokens_.size()));
+          bad(fmt::format("{} numbers do not make whole positions (3 numbers each)", tokens_.size()));
         }
         std::vector<Vec3> points;
         points.reserve(tokens_.size() / 3);
@@ -180,8 +179,7 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
 
 bool equalIgnoringCase(std::string_view a, std::string_view b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
          });
 }
 
@@ -216,8 +214,10 @@ std::string nearMiss(std::string_view name, const std::vector<std::string_view>&
   // The seed report's names for what this format names otherwise (a review: a scene
   // written after the report got only the list of allowed names).
   constexpr std::pair<std::string_view, std::string_view> kReportNames[] = {
-      {"MinimumForce", "Min"},        {"MaximumForce", "Max"},           {"InteractionDistance", "Cutoff"},
-      {"ObjectFluid", "FluidObject"}, {"FluidAndObject", "FluidObject"}, {"Filename", "Geometry"},
+      {"MinimumForce", "Min"},
+      {"MaximumForce", "Max"},
+      {"InteractionDistance", "Cutoff"},
+      {"Filename", "Geometry"},
   };
   for (const auto& [report, ours] : kReportNames)
     if (name == report && std::find(candidates.begin(), candidates.end(), ours) != candidates.end())
