@@ -75,9 +75,12 @@ def _object_points(obj, context):
 
 
 def _rotation_is_own(obj):
-    """Whether the object's world rotation is its rotation_euler alone: no delta rotation
-    and no enabled constraint (parents are refused)."""
-    return (all(abs(x) < 1e-12 for x in obj.delta_rotation_euler)
+    """Whether the object's world rotation is its rotation_euler alone: no delta rotation,
+    no enabled constraint (parents are refused), and no negative scale, which the matrix's
+    decomposition turns into a half turn (a mirrored body in mode XZY was simulated upside
+    down: a review)."""
+    return (all(a * b > 0 for a, b in zip(obj.scale, obj.delta_scale))
+            and all(abs(x) < 1e-12 for x in obj.delta_rotation_euler)
             and abs(obj.delta_rotation_quaternion[0] - 1) < 1e-12
             and not any(getattr(c, "enabled", True) and not getattr(c, "mute", False) for c in obj.constraints))
 

@@ -11,6 +11,7 @@
 
 #include "cache/atomic_file.h"
 #include "cache/manifest.h"
+#include "cache/naming.h"
 #include "cache/sim_format.h"
 #include "core/error.h"
 #include "scene/reader.h"
@@ -132,19 +133,43 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
   // A frame whose .sim file is not the size its manifest lists was damaged after the
   // run (cut, edited): it and the frames after it are left out, before anything is
   // drawn or meshed (mesh and render wrote the frames before it, then failed on it).
+  // With manifests, a run's frames are consecutive and each has one: a frame whose .sim
+  // is gone, or whose manifest is, leaves a gap that the frames after it were drawn
+  // across without a word (a review); it and the frames after it are left out too.
   for (std::size_t i = 0; i < numbers_.size(); ++i) {
+    std::string why;
     const std::optional<cache::Manifest> m =
-        cache::readManifestIfValid(cache::manifestPath(folder_, sceneName_, numbers_[i]));
-    if (!m) continue;  // none, or one that does not read: it says nothing
-    const std::string name = frames_[i].filename().string();
-    const auto entry = std::find_if(m->files.begin(), m->files.end(),
-                                    [&](const cache::ManifestEntry& e) { return e.path == name; });
-    const std::uintmax_t size = fs::file_size(frames_[i], ec);
-    if (entry == m->files.end() || ec || size == entry->bytes) continue;
-    const std::string why = fmt::format(
-        "'{}' has {} bytes, not the {} its manifest lists (changed since the run "
-        "wrote it)",
-        name, size, entry->bytes);
+        manifests.empty() ? std::nullopt
+                          : cache::readManifestIfValid(cache::manifestPath(folder_, sceneName_, numbers_[i]));
+    if (i > 0 && !manifests.empty() && numbers_[i] != numbers_[i - 1] + 1) {
+      why = numbers_[i] - numbers_[i - 1] == 2
+                ? fmt::format("frame {}'s .sim file is missing", numbers_[i - 1] + 1)
+                : fmt::format("the .sim files of frames {} to {} are missing", numbers_[i - 1] + 1,
+                              numbers_[i] - 1);
+      notes_.push_back(fmt::format("frames {} to {} of '{}' left out: {}", numbers_[i - 1] + 1,
+                                   numbers_.back(), sceneName_, why));
+      numbers_.resize(i);
+      frames_.resize(i);
+      break;
+    }
+    if (!manifests.empty() && !m && !fs::exists(cache::manifestPath(folder_, sceneName_, numbers_[i]), ec)) {
+      why = fmt::format(
+          "frame {} has no manifest (manifest/{}.{}.manifest), though the run's other frames have "
+          "one",
+          numbers_[i], sceneName_, cache::frameTag(numbers_[i]));
+    } else if (m) {
+      const std::string name = frames_[i].filename().string();
+      const auto entry = std::find_if(m->files.begin(), m->files.end(),
+                                      [&](const cache::ManifestEntry& e) { return e.path == name; });
+      const std::uintmax_t size = fs::file_size(frames_[i], ec);
+      if (entry == m->files.end() || ec || size == entry->bytes) continue;
+      why = fmt::format(
+          "'{}' has {} bytes, not the {} its manifest lists (changed since the run "
+          "wrote it)",
+          name, size, entry->bytes);
+    } else {
+      continue;  // no manifests at all: the viewer's S, an older softsub
+    }
     if (i == 0)
       throw InputError(
           {frames_[i].string(), 0, "frame"}, why,

@@ -515,6 +515,15 @@ TEST(RenderCli, FramesLeftOutOfARecordingAreWarnedAboutWithoutATerminal) {
   const RunResult quiet = runSoftsub("render " + quote(recorded) + " --out q -q" + size, tmp.path());
   ASSERT_EQ(quiet.code, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
+  // A middle frame's .sim gone: the frames after it were drawn across the gap, silently
+  // (a review); now they are left out and said to be, as for a changed file.
+  fs::remove(recorded / "two-fluids.0001.sim");
+  const RunResult gap = runSoftsub("render " + quote(recorded) + " --out g" + size, tmp.path());
+  ASSERT_EQ(gap.code, 0) << gap.err;
+  EXPECT_NE(gap.err.find("warning: frames 1 to 2 of 'two-fluids' left out: frame 1's .sim file is missing"),
+            std::string::npos)
+      << gap.err;
+  EXPECT_EQ(listFrameFiles(tmp / "g"), pictureNames("two-fluids", 0, 0));
 }
 
 TEST(RunPreview, WritesAPictureOfTheLastFrame) {

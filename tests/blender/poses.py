@@ -46,6 +46,13 @@ mirror = bpy.context.active_object
 mirror.name = "mirror"
 mirror.scale = (-1, 1, 1.5)
 bpy.ops.softsub.make_body(dynamic=False)
+bpy.ops.mesh.primitive_cone_add(radius1=1, depth=2, location=(-6, -4, 3))
+mirror_xzy = bpy.context.active_object
+mirror_xzy.name = "mirror_xzy"
+mirror_xzy.rotation_mode = "XZY"
+mirror_xzy.rotation_euler = (0.7, 0, 0)
+mirror_xzy.scale = (1, -1, 1)
+bpy.ops.softsub.make_body(dynamic=False)
 bpy.ops.mesh.primitive_cone_add(radius1=1, depth=2, location=(4, 0, 5))
 xzy = bpy.context.active_object
 xzy.name = "xzy"
@@ -58,14 +65,14 @@ cube = bpy.context.active_object
 cube.name = "cube"
 bpy.ops.softsub.make_body(dynamic=True)
 bpy.context.view_layer.update()
-before = {o.name: world_vertices(o) for o in (mirror, xzy, cube)}
+before = {o.name: world_vertices(o) for o in (mirror, mirror_xzy, xzy, cube)}
 cube_placed = (tuple(cube.location), cube.rotation_mode, tuple(cube.rotation_euler))
 
 res = bpy.ops.softsub.run(wait=True)
 check(res == {"FINISHED"}, f"run: {res}")
 scene.frame_set(scene.frame_start)
 # Static bodies are where they were placed, mirrored or turned by a delta rotation.
-for o in (mirror, xzy):
+for o in (mirror, mirror_xzy, xzy):
     check(same_points(world_vertices(o), before[o.name], 1e-4), f"{o.name}: moved by the import")
 check(cube.animation_data is not None and cube.animation_data.action is not None, "the cube has no keyframes")
 scene.frame_set(scene.frame_end)
