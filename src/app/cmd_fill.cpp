@@ -80,7 +80,11 @@ std::string snippet(const FillOptions& o, const geometry::MeshFillResult& r) {
       "  <Particles>\n",
       commentText(o.mesh), o.spacing, o.surface ? ", surface only" : "", r.points.size(), o.name, o.spacing,
       o.spacing, 1.5 * o.spacing, r.points.size());
-  for (const Vec3& p : r.points) s += fmt::format("    {} {} {}\n", p.x(), p.y(), p.z());
+  // Each coordinate as the float the simulation keeps, in its shortest text: 0.05, not
+  // the lattice's 0.04999999999999982 (the same float once read).
+  for (const Vec3& p : r.points)
+    s += fmt::format("    {} {} {}\n", static_cast<float>(p.x()), static_cast<float>(p.y()),
+                     static_cast<float>(p.z()));
   s += "  </Particles>\n</Fluid>\n";
   return s;
 }

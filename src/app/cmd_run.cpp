@@ -312,9 +312,11 @@ int runCommand(const RunOptions& o) {
     if (o.stopRecordingAt > loaded.desc.simulation.frames)
       fmt::print(
           stderr,
-          "warning: {}: --stop-recording-at {} is past the scene's last frame {} (<Simulation><Frames>, "
-          "{} when left out): the run ends at frame {}; give --frames {} to simulate up to it\n",
-          shownFile, o.stopRecordingAt, loaded.desc.simulation.frames, scene::SimulationDesc{}.frames,
+          "warning: {}: --stop-recording-at {} is past the run's last frame {} ({}): the run ends at frame "
+          "{}; give --frames {} to simulate up to it\n",
+          shownFile, o.stopRecordingAt, loaded.desc.simulation.frames,
+          o.frames ? std::string("--frames")
+                   : fmt::format("<Simulation><Frames>, {} when left out", scene::SimulationDesc{}.frames),
           loaded.desc.simulation.frames, o.stopRecordingAt);
     // Maya finds a PDC cache by its particle shape's name, and its node names hold no
     // '-' and do not start with a digit: no shape can take such a fluid's files.
@@ -357,6 +359,12 @@ int runCommand(const RunOptions& o) {
     }
     if (resumed.frame >= 0 && chatty)
       fmt::print(stderr, "resuming in {} after frame {}\n", folderText(outDir), resumed.frame);
+    // A resumed run ends at a later frame than the one the folder's preview shows: it goes,
+    // unless --preview draws this run's over it (a review).
+    if (resumed.frame >= 0 && !o.preview) {
+      std::error_code ignored;
+      std::filesystem::remove(outDir / (loaded.name + ".preview.png"), ignored);
+    }
     if (resumed.frame < 0)
       if (const std::size_t gone = forgetEarlierRun(outDir, loaded.name, inputFiles(loaded));
           gone > 0 && chatty)

@@ -134,14 +134,12 @@ void printSceneInfo(const std::string& path) {
       fmt::print("    {}\n", describeFields(shown, {"Name", "Geometry", "Mass", "IsDynamic"}));
       // A primitive without Size stands in for the inertia at a size fitted to the mesh.
       if (obj.size.empty() && obj.shape != scene::ObjectShape::Mesh && o < compiled.objectMeshes.size()) {
+        // As a scene writes Size: before UniformScale (which scales it), so that the line
+        // can be pasted to reproduce the fit.
         const Aabb own = compiled.objectMeshes[o].bounds();
-        Aabb scaled;
-        for (int a = 0; a < 3; ++a) {
-          scaled.lo[a] = own.lo[a] * obj.uniformScale;
-          scaled.hi[a] = own.hi[a] * obj.uniformScale;
-        }
-        fmt::print("    Size {:g} (fitted to the mesh's bounding box, for the inertia)\n",
-                   fmt::join(scene::inertiaPrimitiveSize(obj, scaled), " "));
+        fmt::print(
+            "    Size {:g} (fitted to the mesh's bounding box, for the inertia; before UniformScale)\n",
+            fmt::join(scene::inertiaPrimitiveSize(obj, own), " "));
       }
     }
   }

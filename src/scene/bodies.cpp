@@ -352,14 +352,18 @@ std::string fitWarning(const ObjectDesc& o, const geometry::TriangleMesh& scaled
   }
   const double ratio = fitted / meshVolume;
   if (!(meshVolume > 0) || (ratio <= 2.5 && ratio >= 0.4)) return {};
+  // The Size as a scene writes it: before UniformScale, which scales it too.
+  std::vector<double> written = size;
+  for (double& v : written) v /= o.uniformScale;
+  const bool axis = o.shape == ObjectShape::Cylinder || o.shape == ObjectShape::Cone;
+  const std::string_view shape = kObjectShapeNames[static_cast<std::size_t>(o.shape)];
   return fmt::format(
-      "Object '{}' (line {}): the {} fitted to its mesh for the inertia (Size {:.4g}{}) holds {:.3g} times "
-      "the "
-      "mesh's volume, so its inertia is far off; a {} has its axis along y: give Size, turn the mesh so that "
-      "its axis is y, or use Shape mesh for the mesh's exact inertia",
-      o.name, o.line, kObjectShapeNames[static_cast<std::size_t>(o.shape)], size[0],
-      size.size() > 1 ? fmt::format(" {:.4g}", fmt::join(size.begin() + 1, size.end(), " ")) : std::string(),
-      ratio, kObjectShapeNames[static_cast<std::size_t>(o.shape)]);
+      "Object '{}' (line {}): the {} fitted to its mesh for the inertia (Size {:.4g}) holds {:.3g} times "
+      "the mesh's volume, so its inertia is far off; {}give Size, {}or use Shape mesh for the mesh's exact "
+      "inertia",
+      o.name, o.line, shape, fmt::join(written, " "), ratio,
+      axis ? fmt::format("a {}'s axis is y: ", shape) : std::string(),
+      axis ? "turn the mesh so that its axis is y, " : "");
 }
 
 }  // namespace

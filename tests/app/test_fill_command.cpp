@@ -49,6 +49,9 @@ TEST(FillCommand, SnippetIsAFluidTheReaderAccepts) {
   const scene::SceneDesc f =
       scene::readSceneText("<Scene version=\"1\">\n" + fine.out + "</Scene>\n", "fine.scene");
   EXPECT_NEAR(f.fluids[0].params.interactionDistance, 0.45, 1e-15);
+  // Positions too, as the floats the simulation keeps (0.04999999999999982 was written).
+  EXPECT_EQ(fine.out.find("99999"), std::string::npos) << fine.out;
+  EXPECT_EQ(fine.out.find("00000000"), std::string::npos) << fine.out;
   EXPECT_DOUBLE_EQ(f.fluids[0].params.finiteDistance, 0.3);
   // Well-formed XML for strict parsers too: no "--" inside a comment, even when the mesh's
   // name has one or ends in '-' (the comment used to quote the command line, "--spacing").

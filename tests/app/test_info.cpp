@@ -104,8 +104,11 @@ TEST(Info, SaysWhatAPairReplacesAndTheSizeFittedToAMesh) {
       "Viscosity (pair g / g below replaces its own function and viscosity)\n");
   EXPECT_EQ(r.out.find("not used", r.out.find("  h: ")), std::string::npos)
       << "h has no such pair: " << r.out;
-  // boxObj(2): a cube of edge 2, scaled 1.5: the inertia's box is 3 x 3 x 3.
-  expectContains(r.out, "    Size 3 3 3 (fitted to the mesh's bounding box, for the inertia)\n");
+  // boxObj(2): a cube of edge 2, scaled 1.5: the inertia's box is 3 x 3 x 3, written as a
+  // scene writes Size, before UniformScale (a review: the scaled 3 3 3, pasted as Size,
+  // would be scaled again).
+  expectContains(
+      r.out, "    Size 2 2 2 (fitted to the mesh's bounding box, for the inertia; before UniformScale)\n");
 }
 
 // A folder of .sim frames without manifests (the viewer's S writes none) was refused as
@@ -155,6 +158,15 @@ TEST(Info, APrimitiveFittedFarFromItsMeshsVolumeIsNamed) {
                     "3.14 times the mesh's volume"),
       std::string::npos)
       << cylinder;
+  // Scaled, the Size is still said as a scene writes it, before UniformScale; a sphere
+  // has no axis to turn.
+  const std::string scaled = info("<Shape>cylinder</Shape><UniformScale>2</UniformScale>");
+  EXPECT_NE(scaled.find("(Size 2 1) holds 3.14 times"), std::string::npos) << scaled;
+  const std::string sphere = info("<Shape>sphere</Shape>");
+  EXPECT_NE(sphere.find("the sphere fitted to its mesh for the inertia (Size 2) holds 8.38 times"),
+            std::string::npos)
+      << sphere;
+  EXPECT_EQ(sphere.find("axis"), std::string::npos) << sphere;
   EXPECT_EQ(info("<Shape>box</Shape>"), "");
   EXPECT_EQ(info("<Shape>cylinder</Shape><Size>0.5 4</Size>"), "");
   EXPECT_EQ(info("<Shape>mesh</Shape>"), "");

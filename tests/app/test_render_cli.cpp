@@ -560,6 +560,12 @@ TEST(RunPreview, AFreshRunWithoutPreviewRemovesTheEarlierRunsPicture) {
   // Resumed (nothing left to do): the run's own picture stays.
   ASSERT_EQ(runSoftsub(run + " --resume", tmp.path()).code, 0);
   EXPECT_TRUE(fs::is_regular_file(tmp / "o/two-fluids.preview.png"));
+  // Resumed to a later frame without --preview: the picture of the old last frame goes.
+  ASSERT_EQ(
+      runSoftsub("run " + quote(scene) + " --frames 2 --formats sim -q --out o --resume", tmp.path()).code,
+      0);
+  EXPECT_FALSE(fs::exists(tmp / "o/two-fluids.preview.png"));
+  ASSERT_EQ(runSoftsub(run + " --preview", tmp.path()).code, 0);
   ASSERT_EQ(runSoftsub(run, tmp.path()).code, 0);
   EXPECT_FALSE(fs::exists(tmp / "o/two-fluids.preview.png"));
   EXPECT_TRUE(fs::is_regular_file(tmp / "o/two-fluids.0001.sim"));

@@ -215,7 +215,8 @@ TEST(Run, StopRecordingAtBeyondTheLastFrameRunsTheScene) {
                  tmp.path());
   EXPECT_EQ(said.code, 0) << said.err;
   EXPECT_NE(said.err.find("warning: "), std::string::npos) << said.err;
-  EXPECT_NE(said.err.find("--stop-recording-at 10 is past the scene's last frame 2"), std::string::npos)
+  EXPECT_NE(said.err.find("--stop-recording-at 10 is past the run's last frame 2 (--frames)"),
+            std::string::npos)
       << said.err;
   EXPECT_NE(said.err.find("give --frames 10"), std::string::npos) << said.err;
   const RunResult within =
