@@ -106,9 +106,12 @@ def format_number(v):
     keeps every property in single precision), as an integer when it is one."""
     import struct
     v = float(v)
-    if v == int(v) and abs(v) < 1e15:
-        return str(int(v))
     target = struct.pack("<f", v)
+    single = struct.unpack("<f", target)[0]
+    # An integer once held in single precision is written as one: a rotation converted in
+    # double precision to 40.0000001 was written "4e1" (a review).
+    if single == int(single) and abs(single) < 1e15:
+        return str(int(single))
     for digits in range(1, 10):
         text = f"{v:.{digits}g}"
         if struct.pack("<f", float(text)) == target:

@@ -4,7 +4,6 @@
 #include <array>
 #include <filesystem>
 #include <map>
-#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,7 +16,6 @@
 #include "core/aabb.h"
 #include "core/error.h"
 #include "run_journal.h"
-#include "session/playback.h"
 #include "solver/checkpoint.h"
 #include "text_format.h"
 
@@ -131,23 +129,44 @@ void printRunFolderInfo(const std::string& dirText) {
   const std::vector<std::string> names = cache::manifestSceneNames(dir);
   if (names.empty()) {
     // Frames without manifests (the viewer's S writes none; an older softsub's run): what
-    // render, mesh and the add-on would play, said as such rather than refused.
-    std::optional<session::Playback> frames;
-    try {
-      frames.emplace(dir);
-    } catch (const InputError&) {}
-    if (!frames)
+    // render, mesh and the add-on would play, said per scene, rather than refused.
+    std::map<std::string, std::vector<std::int64_t>> byScene;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (!name.ends_with(".sim") || !entry.is_regular_file(ec)) continue;
+      const std::string stem = name.substr(0, name.size() - 4);
+      const std::size_t dot = stem.rfind('.');
+      if (dot == std::string::npos || dot == 0 || dot + 1 == stem.size()) continue;
+      const std::string digits = stem.substr(dot + 1);
+      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+          digits.size() > 12)
+        continue;
+      byScene[stem.substr(0, dot)].push_back(std::stoll(digits));
+    }
+    if (byScene.empty())
       throw InputError(
           {dirText, 0, {}},
           "no manifest/ with frame manifests and no .sim frames: not a softsub "
           "output folder",
           "a folder `softsub run` or the viewer's S wrote (.sim frames, manifest/<scene>.NNNN.manifest)");
-    fmt::print(
-        "frames of {} in {}: {} frame{}, {}..{}, without manifests (as the viewer's S writes them): "
-        "render, mesh and the Blender add-on play them; run --resume has nothing to continue\n",
-        frames->sceneName(), dirText, frames->frameCount(), frames->frameCount() == 1 ? "" : "s",
-        frames->frameNumbers().front(), frames->frameNumbers().back());
-    for (const std::string& note : frames->notes()) fmt::print("  {}\n", note);
+    for (auto& [scene, numbers] : byScene) {
+      std::sort(numbers.begin(), numbers.end());
+      numbers.erase(std::unique(numbers.begin(), numbers.end()), numbers.end());
+      const std::int64_t missing =
+          numbers.back() - numbers.front() + 1 - static_cast<std::int64_t>(numbers.size());
+      fmt::print(
+          "frames of {} in {}: {} frame{}, {}..{}{}, without manifests (as the viewer's S writes them): "
+          "render, mesh and the Blender add-on play them; run --resume has nothing to continue\n",
+          scene, dirText, numbers.size(), numbers.size() == 1 ? "" : "s", numbers.front(), numbers.back(),
+          missing > 0 ? fmt::format(" ({} missing in between)", missing) : std::string());
+    }
+    if (byScene.size() > 1)
+      fmt::print(
+          "  the folder holds frames of {} scenes: render and mesh take the one the folder is named "
+          "after (<scene>Sim), else the one with the most frames, unless given one of a scene's .sim "
+          "files\n",
+          byScene.size());
     return;
   }
   for (const std::string& name : names) {

@@ -128,6 +128,15 @@ TEST(Info, AFolderOfFramesWithoutManifestsIsDescribedNotRefused) {
   const RunResult r = runSoftsub("info bare", tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   expectContains(r.out, "frames of two-fluids in bare: 4 frames, 0..3, without manifests");
+  // A gap and a second scene are said (a review: one scene was described, no gap).
+  fs::remove(tmp / "bare" / "two-fluids.0002.sim");
+  fs::copy_file(tmp / "o" / "two-fluids.0000.sim", tmp / "bare" / "other.0000.sim");
+  const RunResult two = runSoftsub("info bare", tmp.path());
+  ASSERT_EQ(two.code, 0) << two.err;
+  expectContains(two.out,
+                 "frames of two-fluids in bare: 3 frames, 0..3 (1 missing in between), without manifests");
+  expectContains(two.out, "frames of other in bare: 1 frame, 0..0, without manifests");
+  expectContains(two.out, "the folder holds frames of 2 scenes");
   fs::create_directories(tmp / "empty");
   const RunResult none = runSoftsub("info empty", tmp.path());
   EXPECT_EQ(none.code, 2) << none.err;

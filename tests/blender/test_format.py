@@ -61,7 +61,8 @@ class SchemaTest(unittest.TestCase):
 
     def test_numbers_are_the_shortest_single_precision_text(self):
         for v, text in ((f32(0.1), "0.1"), (f32(-9.81), "-9.81"), (12.0, "12"), (f32(1e-7), "1e-7"),
-                        (f32(1 / 3), "0.33333334"), (-0.0, "0")):
+                        (f32(1 / 3), "0.33333334"), (-0.0, "0"),
+                        (40.0000001, "40"), (-29.9999999, "-30")):  # integers once single: "4e1" was written
             self.assertEqual(schema.format_number(v), text)
         rnd = random.Random(5)
         for _ in range(2000):
