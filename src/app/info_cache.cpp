@@ -4,11 +4,13 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "cache/atomic_file.h"
 #include "cache/manifest.h"
+#include "cache/naming.h"
 #include "cache/pdc_format.h"
 #include "cache/ply_format.h"
 #include "cache/sim_format.h"
@@ -133,16 +135,9 @@ void printRunFolderInfo(const std::string& dirText) {
     std::map<std::string, std::vector<std::int64_t>> byScene;
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-      const std::string name = entry.path().filename().string();
-      if (!name.ends_with(".sim") || !entry.is_regular_file(ec)) continue;
-      const std::string stem = name.substr(0, name.size() - 4);
-      const std::size_t dot = stem.rfind('.');
-      if (dot == std::string::npos || dot == 0 || dot + 1 == stem.size()) continue;
-      const std::string digits = stem.substr(dot + 1);
-      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
-          digits.size() > 12)
-        continue;
-      byScene[stem.substr(0, dot)].push_back(std::stoll(digits));
+      const std::optional<cache::SimFileName> name =
+          cache::parseSimFileName(entry.path().filename().string());
+      if (name && entry.is_regular_file(ec)) byScene[name->scene].push_back(name->frame);
     }
     if (byScene.empty())
       throw InputError(

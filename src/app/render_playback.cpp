@@ -58,10 +58,6 @@ std::int64_t RecordedFrames::frameNumber(std::size_t index) const { return playb
 
 FrameSnapshot RecordedFrames::load(std::size_t index) const { return playback_->load(index); }
 
-const std::string& RecordedFrames::sceneNote() const { return playback_->sceneNote(); }
-const std::string& RecordedFrames::unnamedFluids() const { return playback_->unnamedFluids(); }
-const std::vector<std::string>& RecordedFrames::notes() const { return playback_->notes(); }
-
 std::vector<std::string> playbackWarnings(const session::Playback& playback, std::string_view withoutScene,
                                           std::string_view how) {
   std::vector<std::string> out;

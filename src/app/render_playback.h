@@ -30,13 +30,7 @@ class RecordedFrames {
   [[nodiscard]] std::int64_t frameNumber(std::size_t index) const;
   /// The frame at `index` (colours and sizes from the scene file beside the folder).
   [[nodiscard]] FrameSnapshot load(std::size_t index) const;
-  /// Why the scene file beside the folder was not used (it is invalid), or "".
-  [[nodiscard]] const std::string& sceneNote() const;
-  /// session::Playback::unnamedFluids.
-  [[nodiscard]] const std::string& unnamedFluids() const;
-  /// Which scene was taken, which frames were left out (session::Playback::notes).
-  [[nodiscard]] const std::vector<std::string>& notes() const;
-  /// The folder as played.
+  /// The folder as played (its notes and warnings: playbackWarnings).
   [[nodiscard]] const session::Playback& playback() const { return *playback_; }
 
   std::string sceneName;            ///< names the pictures

@@ -1,5 +1,7 @@
 #include "cache/naming.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
@@ -61,6 +63,22 @@ std::filesystem::path plyPath(const std::filesystem::path& dir, std::string_view
                               std::int64_t frame) {
   checkFileNamePart(sceneName, "scene name");
   return dir / "ply" / fmt::format("{}.{}.ply", sceneName, frameTag(frame));
+}
+
+std::optional<SimFileName> parseSimFileName(std::string_view name) {
+  constexpr std::string_view ext = ".sim";
+  if (name.size() <= ext.size() || !name.ends_with(ext)) return std::nullopt;
+  const std::string_view base = name.substr(0, name.size() - ext.size());
+  const std::size_t dot = base.rfind('.');
+  if (dot == std::string_view::npos || dot == 0 || dot + 1 == base.size()) return std::nullopt;
+  const std::string_view digits = base.substr(dot + 1);
+  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  SimFileName out;
+  const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out.frame);
+  if (ec != std::errc{} || ptr != digits.data() + digits.size()) return std::nullopt;
+  out.scene = std::string(base.substr(0, dot));
+  return out;
 }
 
 }  // namespace softsub::cache

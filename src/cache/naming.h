@@ -3,6 +3,7 @@
 /// and `ply/<scene>.<tag>.ply` inside the output folder (see docs/cache-formats.md).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -19,6 +20,14 @@ namespace softsub::cache {
 /// Checks that `name` can be part of a file name: not empty, no '/', '\\' or control
 /// characters. Throws InputError naming `element` (e.g. "Fluid/Name") otherwise.
 void checkFileNamePart(std::string_view name, std::string_view element);
+
+/// A frame file's name `<scene>.<digits>.sim`, split.
+struct SimFileName {
+  std::string scene;
+  std::int64_t frame = 0;
+};
+/// Splits a `.sim` frame file's name; nullopt for any other name.
+[[nodiscard]] std::optional<SimFileName> parseSimFileName(std::string_view name);
 
 /// `dir/<scene>.<tag>.sim`.
 [[nodiscard]] std::filesystem::path simPath(const std::filesystem::path& dir,

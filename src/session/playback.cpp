@@ -24,27 +24,6 @@ namespace {
 
 constexpr const char* kExpected = "a folder of <scene>.NNNN.sim frames, as 'softsub run' writes (<scene>Sim/)";
 
-/// A frame file name `<stem>.<digits>.sim`, split.
-struct FrameName {
-  std::string stem;
-  std::int64_t frame = 0;
-};
-
-std::optional<FrameName> parseFrameName(const std::string& name) {
-  constexpr std::string_view ext = ".sim";
-  if (name.size() <= ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0) return std::nullopt;
-  const std::string_view base(name.data(), name.size() - ext.size());
-  const std::size_t dot = base.rfind('.');
-  if (dot == std::string_view::npos || dot == 0 || dot + 1 == base.size()) return std::nullopt;
-  const std::string_view digits = base.substr(dot + 1);
-  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
-  FrameName out;
-  const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out.frame);
-  if (ec != std::errc{} || ptr != digits.data() + digits.size()) return std::nullopt;
-  out.stem = std::string(base.substr(0, dot));
-  return out;
-}
-
 /// A mesh file name from a `.sim` file: relative, inside the folder.
 void checkMeshName(const std::string& filename, const fs::path& simFile) {
   const fs::path p(filename);
@@ -66,9 +45,9 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
   std::string wanted;  // the scene whose frames to play, when known
   const bool givenFrame = fs::is_regular_file(folder, ec);  // a frame file names its scene
   if (givenFrame) {
-    const std::optional<FrameName> name = parseFrameName(folder.filename().string());
+    const std::optional<cache::SimFileName> name = cache::parseSimFileName(folder.filename().string());
     if (!name) throw InputError({path.string(), 0, "file"}, "is not a recorded frame", kExpected);
-    wanted = name->stem;
+    wanted = name->scene;
     folder = folder.has_parent_path() ? folder.parent_path() : fs::path(".");
   } else if (!fs::is_directory(folder, ec)) {
     throw IoError(fmt::format("cannot open recorded frames '{}': no such folder", path.string()));
@@ -78,9 +57,9 @@ Playback::Playback(const fs::path& path, const fs::path& givenScene) {
   // Every frame file, by scene.
   std::map<std::string, std::vector<std::pair<std::int64_t, fs::path>>> byScene;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::optional<FrameName> name = parseFrameName(it->path().filename().string());
+    const std::optional<cache::SimFileName> name = cache::parseSimFileName(it->path().filename().string());
     if (!name || !it->is_regular_file(ec)) continue;
-    byScene[name->stem].emplace_back(name->frame, it->path());
+    byScene[name->scene].emplace_back(name->frame, it->path());
   }
   if (ec) throw IoError(fmt::format("cannot read folder '{}': {}", folder.string(), ec.message()));
   if (byScene.empty())
