@@ -173,6 +173,7 @@ std::size_t PairList::pairCount() const {
         return t;
       }();
       for (const std::uint16_t e : layer.packed) n += Layer::isWindow(e) ? kLanes[e & 127u] : 0u;
+      for (const std::uint8_t e : layer.outerLanes) n += kLanes[e & 127u];
       continue;
     }
     for (const std::uint32_t e : layer.groups) n += static_cast<std::size_t>(std::popcount(e & 255u));
@@ -183,7 +184,8 @@ std::size_t PairList::pairCount() const {
 std::size_t PairList::memoryBytes() const {
   std::size_t b = (rowCut2_.capacity() + firstCell_.capacity()) * 4 + layers_.capacity() * sizeof(Layer);
   for (const Layer& l : layers_)
-    b += (l.start.capacity() + l.far.capacity() + l.groups.capacity()) * 4 + (l.near.capacity() + l.packed.capacity()) * 2;
+    b += (l.start.capacity() + l.far.capacity() + l.groups.capacity()) * 4 +
+         (l.near.capacity() + l.packed.capacity() + l.outer.capacity()) * 2 + l.outerLanes.capacity();
   for (const Scratch::Buffers& s : scratch_->perThread)
     b += (s.x.capacity() + s.y.capacity() + s.z.capacity() + s.entry.capacity() +
           s.owner.capacity() + s.kept.capacity() + s.rangeStart.capacity() + s.sums.capacity()) * 4 + s.ranges.capacity() * sizeof(neighbors::SlotRange);
@@ -232,14 +234,19 @@ void PairList::build(const neighbors::CellGrid& grid, const forces::InteractionT
     }
     firstCell_[layerCount_] = static_cast<std::uint32_t>(grid.cellCount());
   }
+  // Packed windows with no partner within the cutoff are kept as outer windows
+  // (Layer::outer; docs/benchmarks.md, thirty-second session: with a margin of a tenth
+  // of the skin the liquid at cutoff 2.0 was slower, at 2.5 no faster).
+  const float innerCut2 = grouped_ ? table.closedFormLj()->cutoff2 : 0.0f;
   const Simd simd = simdInUse();
   auto buildOne = [&](std::size_t l, Scratch::Buffers& buf, neighbors::CellGrid::ForwardRanges& forwardRanges) {
     if (simd == Simd::Avx2)
-      SOFTSUB_AVX2_ONLY(avx2::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges,
-                                         grid, s, options, rowCut2_.data(), grouped_));
+      SOFTSUB_AVX2_ONLY(avx2::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf,
+                                         forwardRanges, grid, s, options, rowCut2_.data(), grouped_,
+                                         innerCut2));
     else
-      baseline::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges, grid, s,
-                           options, rowCut2_.data(), grouped_);
+      baseline::buildLayer(layers_[l], gridLayers[l], firstCell_[l], firstCell_[l + 1], buf, forwardRanges,
+                           grid, s, options, rowCut2_.data(), grouped_, innerCut2);
   };
   if (forces == nullptr) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, layerCount_, 1), [&](const auto& range) {

@@ -98,7 +98,8 @@ class PairList {
   /// is below 8 are special: jump codes (step 1, the low 7 bits a signed count of
   /// kJumpSlots slots) bring the next window 8 to 263 slots ahead where it would be
   /// less than 8 or more than 511 slots on (counted modulo 2^32, or as signed offsets:
-  /// the same slots), and a code 0 ends the slot. Each window starts at the lowest
+  /// the same slots), and a code below 128 (step 0) ends the slot: its low 7 bits
+  /// count the slot's outer windows (below). Each window starts at the lowest
   /// partner not yet in a window (greedy), which needs about a sixth fewer windows than
   /// aligned groups of 8 (9.5 against 11.4 a particle in the LJ liquid): the kernel's
   /// cost is per window. Why codes:
@@ -107,6 +108,15 @@ class PairList {
   /// and the kernel walks each layer's slots in order anyway: 2 bytes a window and 4 a
   /// slot (11.3 codes, about 23 bytes a particle in the LJ liquid, against 53 for 32-bit
   /// entries with row starts), which keeps the whole simulation under 100 bytes a particle.
+  /// Outer windows: a window none of whose partners lay within the cutoff when the list
+  /// was built (only the skin's shell: a fifth to a third of the Lennard-Jones liquid's
+  /// windows) is kept apart, in slot order: w - slot - 1 in `outer` (16 bits: a narrow
+  /// layer's span) and its lanes 1 to 7 in `outerLanes`, the count of each slot's in
+  /// its end code. The kernel tests such a window's distances first and evaluates it
+  /// only when a partner has come within the cutoff (about one test in fifty in the
+  /// liquid: a branch the predictor knows), in a pass of its own after the layer's
+  /// windows, so that no slot's loop gets a second, unpredictable exit. The same pairs,
+  /// a byte more a window; only the order of the sums changes.
   /// Wide grouped layers keep one 32-bit entry g << 8 | lanes per aligned group, with
   /// `start`, and the kernel adds their forces straight to the store.
   struct Layer {
@@ -118,6 +128,8 @@ class PairList {
     std::vector<std::uint32_t> far;     ///< not narrow, not grouped: partner slot
     std::vector<std::uint32_t> groups;  ///< grouped, not narrow: g << 8 | partner lanes
     std::vector<std::uint16_t> packed;  ///< grouped and narrow: the codes above
+    std::vector<std::uint16_t> outer;   ///< packed: the outer windows' starts above
+    std::vector<std::uint8_t> outerLanes;  ///< packed: the outer windows' lanes above
     neighbors::SlotRange span;          ///< the slots of the layer and of its cells' candidate ranges
     /// Whether the layer keeps its groups in `packed`.
     [[nodiscard]] bool isPacked() const { return grouped && narrow; }
@@ -135,10 +147,11 @@ class PairList {
         for (std::uint32_t k = 0; k < rows; ++k) forEachListed(k, [&](std::uint32_t j) { fn(k, j); });
         return;
       }
-      std::size_t q = 0;
+      std::size_t q = 0, o = 0;
       for (std::uint32_t k = 0; k < rows; ++k) {
         std::uint32_t w = slots.begin + k - 7;  // modulo 2^32 (the kernel: signed, the same slots)
-        for (std::uint32_t e = packed[q++]; e != 0; e = packed[q++]) {
+        std::uint32_t e = packed[q++];
+        for (; !isEnd(e); e = packed[q++]) {
           if (!isWindow(e)) {  // a jump
             w += jumpOf(e);
             continue;
@@ -146,6 +159,11 @@ class PairList {
           w += e >> kStepShift;
           for (std::uint32_t bits = windowLanes(e); bits != 0; bits &= bits - 1)
             fn(k, w + static_cast<std::uint32_t>(std::countr_zero(bits)));
+        }
+        for (const std::size_t last = o + e; o < last; ++o) {
+          const std::uint32_t ow = slots.begin + k + 1 + outer[o];
+          for (std::uint32_t bits = windowLanes(outerLanes[o]); bits != 0; bits &= bits - 1)
+            fn(k, ow + static_cast<std::uint32_t>(std::countr_zero(bits)));
         }
       }
     }
@@ -161,9 +179,10 @@ class PairList {
       }
       forEachListed(k, fn);
     }
-    /// Number of list entries: pairs; groups in wide grouped layers; codes in packed ones.
+    /// Number of list entries: pairs; groups in wide grouped layers; codes in packed ones
+    /// (outer ones included).
     [[nodiscard]] std::size_t size() const {
-      if (isPacked()) return packed.size();
+      if (isPacked()) return packed.size() + outer.size();
       return start.empty() ? 0 : start.back();
     }
     /// forEachPartner for a layer that is not packed (row starts).
@@ -186,8 +205,12 @@ class PairList {
     static constexpr std::int32_t kJumpSlots = 256;
     /// Whether a packed code is a window (step kMinStep or more).
     [[nodiscard]] static constexpr bool isWindow(std::uint32_t code) { return code >= kMinStep << kStepShift; }
-    /// Whether a packed code is a jump (not the end code 0, step below kMinStep).
-    [[nodiscard]] static constexpr bool isJump(std::uint32_t code) { return code != 0 && !isWindow(code); }
+    /// Whether a packed code is a jump (step 1).
+    [[nodiscard]] static constexpr bool isJump(std::uint32_t code) { return code >> kStepShift == 1; }
+    /// Whether a packed code ends its slot (step 0); its value is the slot's outer windows.
+    [[nodiscard]] static constexpr bool isEnd(std::uint32_t code) { return code >> kStepShift == 0; }
+    /// The most outer windows a slot keeps (its end code's 7 bits).
+    static constexpr std::uint32_t kOuterMost = 127;
     /// The slots a packed jump code moves by, modulo 2^32 (its low 7 bits, signed).
     [[nodiscard]] static constexpr std::uint32_t jumpOf(std::uint32_t code) {
       const std::int32_t units = static_cast<std::int32_t>(static_cast<std::int8_t>((code & 127u) << 1)) >> 1;

@@ -25,13 +25,17 @@ inline constexpr std::uint32_t kFilterBlock = 8;
 // Bit c set: buffer entry k + c (c < 8) is closer than sqrt(cut2) to (xi, yi, zi). The
 // squared distance is dx * dx + dy * dy + dz * dz in this order and without fused
 // multiply-adds in every form below, so every form keeps the same entries.
-inline std::uint32_t nearMask(const Candidates& b, std::uint32_t k, float xi, float yi, float zi, float cut2) {
+// nearMasks: the same, and bit c + 8 set where the entry is also closer than sqrt(inner2)
+// (the packed list's outer windows: fillPacked).
+inline std::uint32_t nearMasks(const Candidates& b, std::uint32_t k, float xi, float yi, float zi, float cut2,
+                               float inner2) {
 #if SOFTSUB_KERNEL_AVX || defined(__AVX__)
   const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(b.x + k), _mm256_set1_ps(xi));
   const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(b.y + k), _mm256_set1_ps(yi));
   const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(b.z + k), _mm256_set1_ps(zi));
   const __m256 r2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-  return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(cut2), _CMP_LT_OQ)));
+  return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(cut2), _CMP_LT_OQ))) |
+         static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(inner2), _CMP_LT_OQ))) << 8;
 #elif defined(__SSE2__)
   std::uint32_t bits = 0;
   for (std::uint32_t h = 0; h < 8; h += 4) {
@@ -40,16 +44,21 @@ inline std::uint32_t nearMask(const Candidates& b, std::uint32_t k, float xi, fl
     const __m128 dz = _mm_sub_ps(_mm_loadu_ps(b.z + k + h), _mm_set1_ps(zi));
     const __m128 r2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
     bits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(r2, _mm_set1_ps(cut2)))) << h;
+    bits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(r2, _mm_set1_ps(inner2)))) << (h + 8);
   }
   return bits;
 #else
   std::uint32_t bits = 0;
   for (std::uint32_t c = 0; c < 8; ++c) {
     const float dx = b.x[k + c] - xi, dy = b.y[k + c] - yi, dz = b.z[k + c] - zi;
-    bits |= (dx * dx + dy * dy + dz * dz < cut2 ? 1u : 0u) << c;
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    bits |= (r2 < cut2 ? 1u : 0u) << c | (r2 < inner2 ? 1u : 0u) << (c + 8);
   }
   return bits;
 #endif
+}
+inline std::uint32_t nearMask(const Candidates& b, std::uint32_t k, float xi, float yi, float zi, float cut2) {
+  return nearMasks(b, k, xi, yi, zi, cut2, 0.0f) & 255u;
 }
 
 #if SOFTSUB_KERNEL_AVX || defined(__AVX2__)
@@ -205,19 +214,21 @@ inline void paddedGroup(const ParticleStore& s, std::uint32_t first, float (&x)[
 // (xi, yi, zi) than cut2 squared; the store's last, partial group padded (paddedGroup).
 // `store`: the store's position arrays; n: its size (read once by the caller, not per
 // group).
+// With inner2 (listAligned's), bit c + 8: lane c is also closer than sqrt(inner2).
 inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, std::uint32_t n, std::uint32_t g8,
-                               float xi, float yi, float zi, float cut2) {
+                               float xi, float yi, float zi, float cut2, float inner2) {
   if (g8 + 8 <= n) [[likely]]
-    return nearMask(store, g8, xi, yi, zi, cut2);
+    return nearMasks(store, g8, xi, yi, zi, cut2, inner2);
   float x[8], y[8], z[8];
   paddedGroup(s, g8, x, y, z);
-  return nearMask(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2);
+  return nearMasks(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2, inner2);
 }
 
 // A grouped layer's list (PairList::Layer::grouped) for slot i: the aligned groups of 8
 // slots that hold its partners among [b, e) (one candidate range: the rest of i's cell,
-// or a forward range), each as (g - lo / 8) << 8 | the lanes that are partners, from
-// out[at] on (at most one per group the range touches); returns the new length. Wide
+// or a forward range), each as (g - lo / 8) << 8 | the lanes that are partners (with
+// kInner, for a packed layer, whose g fits 16 bits: (g - lo / 8) << 16 | the partner
+// lanes closer than sqrt(inner2) << 8 | the lanes that are partners), from out[at] on (at most one per group the range touches); returns the new length. Wide
 // layers keep these entries, packed ones turn them into windows (packWindows). The
 // groups are tested straight from the store's arrays, 8 slots at a time with the same
 // distance test as filter(), so a grouped list lists exactly the pairs a plain one
@@ -228,9 +239,11 @@ inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, 
 // and the loop has no branch per group: GCC otherwise kept the length in memory and
 // branched on every group (twice the build's time). Inlined into the layer's loop (GCC
 // stopped doing so by itself when groupNear was shared: a call per range, 6 a slot).
+template <bool kInner = false>
 [[gnu::always_inline]] inline std::uint32_t listAligned(const ParticleStore& s, std::uint32_t i, float cut2,
                                                         std::uint32_t b, std::uint32_t e, std::uint32_t lo,
-                                                        std::uint32_t* __restrict out, std::uint32_t at) {
+                                                        std::uint32_t* __restrict out, std::uint32_t at,
+                                                        float inner2 = 0.0f) {
   if (b >= e) return at;
   const float xi = s.px[i], yi = s.py[i], zi = s.pz[i];
   const auto n = static_cast<std::uint32_t>(s.size());
@@ -240,47 +253,56 @@ inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, 
   std::uint32_t edge = 0xFFu << (b % 8);
   std::uint32_t a = at;
   for (std::uint32_t g = first; g <= last; ++g) {
-    const std::uint32_t lanes =
-        groupNear(s, store, n, lo + 8 * g, xi, yi, zi, cut2) & edge & (g == last ? lastLanes : 0xFFu);
+    const std::uint32_t near = groupNear(s, store, n, lo + 8 * g, xi, yi, zi, cut2, inner2);
+    const std::uint32_t lanes = near & edge & (g == last ? lastLanes : 0xFFu);
     edge = 0xFFu;
-    out[a] = g << 8 | lanes;
+    if constexpr (kInner)
+      out[a] = g << 16 | (near >> 8 & lanes) << 8 | lanes;
+    else
+      out[a] = g << 8 | lanes;
     a += lanes != 0 ? 1u : 0u;
   }
   return a;
 }
 
-// Slot i's aligned groups (listAligned's entries, `count` of them, counted from slot
-// lo) as packed window codes (PairList::Layer::packed) from out[at] on, without the end
-// code; returns the new length. Room: 6 codes per entry (a window per entry at most,
-// each after up to 5 jumps in a narrow layer's span); fillPacked adds one for the end.
+// Slot i's aligned groups (listAligned<true>'s entries, `count` of them, counted from
+// slot lo) as packed window codes (PairList::Layer::packed) from out[at] on, without
+// the end code, and its outer windows from outer[0] and outerLanes[0] on; returns the
+// new length and the outer windows' count (at most kOuterMost). Room: 6 codes per
+// entry in out (a window per entry at most, each after up to 5 jumps in a narrow
+// layer's span), and one per entry in outer; fillPacked adds one for the end code.
 // Greedy: a window starts at the lowest partner not yet in one and takes the partners
 // among its 8 slots. A window that starts at lane `off` of group g covers lanes off
-// and up of g and the lanes below off of g + 1, so each entry either adds to the last
-// window's code (a group two ranges share, or the next group) or starts one at its
-// lowest partner left, with one branch per entry and none per window (the LJ liquid's
+// and up of g and the lanes below off of g + 1, so each entry either adds to the open
+// window (a group two ranges share, or the next group) or starts one at its lowest
+// partner left, with one branch per entry and none per window (the LJ liquid's
 // build: 4.2-4.3 ms against 3.2 for aligned groups; keeping the waiting partners in a
-// 64-bit mask and writing windows in a loop took 4.8). Entries come in ascending
-// order but where a forward cell lies across the grid's wrap; a window then starts
-// behind the last one, after jump codes: still each pair in exactly one window.
-inline std::uint32_t packWindows(std::uint32_t i, std::uint32_t lo, const std::uint32_t* __restrict entry,
-                                 std::uint32_t count, std::uint16_t* __restrict out, std::uint32_t at) {
+// 64-bit mask and writing windows in a loop took 4.8). A window is written when the
+// next one starts (or the slot ends): to `outer` when none of its partners is closer
+// than the inner distance, else to `out`. Entries come in ascending order but where a forward cell lies across the
+// grid's wrap; a window then starts behind the last one, after jump codes: still each
+// pair in exactly one window.
+struct PackedCounts {
+  std::uint32_t at, outer;
+};
+inline PackedCounts packWindows(std::uint32_t i, std::uint32_t lo, const std::uint32_t* __restrict entry,
+                                std::uint32_t count, std::uint16_t* __restrict out, std::uint32_t at,
+                                std::uint16_t* __restrict outer, std::uint8_t* __restrict outerLanes) {
   using Layer = PairList::Layer;
-  // The last window's first slot, modulo 2^32 (the kernel counts signed: the same slots).
+  // The last window written to `out`'s first slot, modulo 2^32 (the kernel counts
+  // signed: the same slots).
   std::uint32_t prev = i - 7;
-  std::uint32_t wg = UINT32_MAX - 1, off = 0;  // the last window's group (from lo) and first lane
-  std::uint32_t last = at;                      // its code
-  for (std::uint32_t q = 0; q < count; ++q) {
-    const std::uint32_t g = entry[q] >> 8, m = entry[q] & 255u;
-    const std::uint32_t dg = g - wg;  // modulo 2^32
-    // The lanes the last window covers in this group, and where they are in the window.
-    const std::uint32_t covered = dg == 0 ? m & (0xFFu << off) : dg == 1 ? m & ((1u << off) - 1u) : 0u;
-    const std::uint32_t lanes = dg == 0 ? covered >> off : covered << (8 - off);
-    out[last] = static_cast<std::uint16_t>(out[last] | (lanes & 255u) >> 1);
-    const std::uint32_t left = m & ~covered;
-    if (left == 0) continue;
-    off = static_cast<std::uint32_t>(std::countr_zero(left));
-    wg = g;
-    const std::uint32_t w = lo + 8 * g + off;
+  std::uint32_t outers = 0;
+  // The open window: its group (from lo), first lane, first slot, lanes (bit c: slot
+  // w + c) and whether a partner of it is within the inner distance.
+  std::uint32_t wg = UINT32_MAX - 1, off = 0, w = 0, lanes = 0;
+  bool inner = false;
+  const auto write = [&] {
+    if (!inner && outers < Layer::kOuterMost) {  // w - i - 1 < 65,536: a narrow layer's span
+      outer[outers] = static_cast<std::uint16_t>(w - (i + 1));
+      outerLanes[outers++] = static_cast<std::uint8_t>((lanes & 255u) >> 1);
+      return;
+    }
     std::uint32_t step = w - prev;
     while (step - Layer::kMinStep > 511 - Layer::kMinStep) [[unlikely]] {  // jumps: 8 to 263 slots ahead after them
       const std::int64_t ahead = static_cast<std::int32_t>(step) - static_cast<std::int64_t>(Layer::kMinStep);
@@ -291,17 +313,36 @@ inline std::uint32_t packWindows(std::uint32_t i, std::uint32_t lo, const std::u
       prev += Layer::jumpOf(code);
       step = w - prev;
     }
-    last = at;
-    out[at++] = static_cast<std::uint16_t>(step << Layer::kStepShift | (left >> off & 255u) >> 1);
+    out[at++] = static_cast<std::uint16_t>(step << Layer::kStepShift | (lanes & 255u) >> 1);
     prev = w;
+  };
+  for (std::uint32_t q = 0; q < count; ++q) {
+    const std::uint32_t g = entry[q] >> 16, m = entry[q] & 255u, near = entry[q] >> 8 & 255u;
+    const std::uint32_t dg = g - wg;  // modulo 2^32
+    // The lanes the open window covers in this group, and where they are in the window.
+    const std::uint32_t covered = dg == 0 ? m & (0xFFu << off) : dg == 1 ? m & ((1u << off) - 1u) : 0u;
+    lanes |= dg == 0 ? covered >> off : covered << (8 - off);
+    inner = inner || (near & covered) != 0;
+    const std::uint32_t left = m & ~covered;
+    if (left == 0) continue;
+    if (wg != UINT32_MAX - 1) write();
+    off = static_cast<std::uint32_t>(std::countr_zero(left));
+    wg = g;
+    w = lo + 8 * g + off;
+    lanes = left >> off & 255u;
+    inner = (near & left) != 0;
   }
-  return at;
+  if (wg != UINT32_MAX - 1) write();
+  return {at, outers};
 }
 
+// One layer's list. innerCut2: for a packed layer, the squared inner distance of its
+// outer windows (packWindows; 0: none).
 template <class Scratch>
 void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t cellBegin, std::size_t cellEnd,
                 Scratch& buf, neighbors::CellGrid::ForwardRanges& forwardRanges, const neighbors::CellGrid& grid,
-                const ParticleStore& s, const ListOptions& options, const float* rowCut2, bool grouped) {
+                const ParticleStore& s, const ListOptions& options, const float* rowCut2, bool grouped,
+                float innerCut2) {
   const bool exclusive = options.exclusiveOwnersFrom != UINT32_MAX;
   layer.slots = slots;
   layer.grouped = grouped;
@@ -417,7 +458,11 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   auto fillPacked = [&](std::vector<std::uint16_t>& out) {
     const std::uint32_t lo = layer.span.begin & ~7u;
     out.resize(out.capacity());
-    std::uint32_t listed = 0;
+    std::vector<std::uint16_t>& outer = layer.outer;
+    std::vector<std::uint8_t>& outerLanes = layer.outerLanes;
+    outer.resize(outer.capacity());
+    outerLanes.resize(outerLanes.capacity());
+    std::uint32_t listed = 0, outers = 0;
     for (std::size_t c = cellBegin; c < cellEnd; ++c) {
       const neighbors::SlotRange own = grid.cell(c);
       const std::size_t cl = c - cellBegin;
@@ -430,15 +475,25 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
       std::uint32_t* const groups = buf.kept.data();
       for (std::uint32_t i = own.begin; i < own.end; ++i) {
         const float cut2 = rowCut2[s.material[i]];
-        std::uint32_t count = listAligned(s, i, cut2, i + 1, own.end, lo, groups, 0);
-        for (const neighbors::SlotRange& r : forward) count = listAligned(s, i, cut2, r.begin, r.end, lo, groups, count);
+        std::uint32_t count = listAligned<true>(s, i, cut2, i + 1, own.end, lo, groups, 0, innerCut2);
+        for (const neighbors::SlotRange& r : forward)
+          count = listAligned<true>(s, i, cut2, r.begin, r.end, lo, groups, count, innerCut2);
         if (out.size() < listed + 6 * count + 1) grow(out, listed + 6 * count + 1);
-        listed = packWindows(i, lo, groups, count, out.data(), listed);
-        out[listed++] = 0;
+        if (outer.size() < outers + count) grow(outer, outers + count);
+        if (outerLanes.size() < outers + count) grow(outerLanes, outers + count);
+        const PackedCounts n =
+            packWindows(i, lo, groups, count, out.data(), listed, outer.data() + outers, outerLanes.data() + outers);
+        listed = n.at;
+        outers += n.outer;
+        out[listed++] = static_cast<std::uint16_t>(n.outer);  // the end code
       }
     }
     out.resize(listed);
     trim(out, listed);
+    outer.resize(outers);
+    trim(outer, outers);
+    outerLanes.resize(outers);
+    trim(outerLanes, outers);
     return listed;
   };
   const std::uint32_t listed = packed         ? fillPacked(layer.packed)
@@ -450,7 +505,11 @@ void buildLayer(PairList::Layer& layer, neighbors::SlotRange slots, std::size_t 
   if (grouped || !layer.narrow) std::vector<std::uint16_t>().swap(layer.near);
   if (grouped || layer.narrow) std::vector<std::uint32_t>().swap(layer.far);
   if (!grouped || packed) std::vector<std::uint32_t>().swap(layer.groups);
-  if (!packed) std::vector<std::uint16_t>().swap(layer.packed);
+  if (!packed) {
+    std::vector<std::uint16_t>().swap(layer.packed);
+    std::vector<std::uint16_t>().swap(layer.outer);
+    std::vector<std::uint8_t>().swap(layer.outerLanes);
+  }
   if (packed) {
     std::vector<std::uint32_t>().swap(layer.start);
     return;
@@ -847,6 +906,22 @@ struct LjLanes {
     const Vf u4 = reinterpret_cast<Vf>(reinterpret_cast<Vi>(u2 * u2) & in);
     return fused(au, u2, minusB) * u4;  // F(r) / r
   }
+  // Whether a partner lane lies within the cutoff: the r² and test of forceOverR.
+  [[nodiscard]] bool anyWithin(Vf dx, Vf dy, Vf dz, const std::int32_t* partnerLanes) const {
+    const Vf r2 = fused(dz, dz, fused(dy, dy, dx * dx));
+    Vi partner;
+    std::memcpy(&partner, partnerLanes, sizeof partner);
+    const Vi in = partner & (r2 < cutoff2);
+#if SOFTSUB_KERNEL_AVX || defined(__AVX__)
+    return _mm256_movemask_ps(reinterpret_cast<__m256>(in)) != 0;
+#elif defined(__SSE2__)
+    return _mm_movemask_ps(reinterpret_cast<__m128>(in)) != 0;
+#else
+    bool any = false;
+    for (std::uint32_t l = 0; l < kLanes; ++l) any = any || in[l] != 0;
+    return any;
+#endif
+  }
 };
 
 // How many consecutive slots' own sums packedPairForces adds up together.
@@ -936,6 +1011,14 @@ inline void addSums(Force* __restrict f, const float* __restrict x, const float*
 // the number of threads.
 // The sums are added to the store holding `locks` (setPairForces: this layer's and the
 // next one's; empty in the phases, which need none).
+// Outer windows (PairList::Layer::outer) come in passes of their own, each after a batch
+// of kBatch slots once over a thousand are waiting, and after the layer's last: each
+// slot's end code gives their count, and the slot is written that many times into
+// outerSlots (8 lanes at once, with no branch), so that their pass walks one flat
+// array (a pass after every batch of 8 slots was 4% slower at cutoff 2.0: a loop exit
+// a batch); an outer window with no partner within the cutoff costs its loads and
+// distances and a branch (the same r² and test as forceOverR: exactly the zeros its
+// evaluation would add).
 void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
                       const float* __restrict qx, const float* __restrict qy, const float* __restrict qz,
                       float* __restrict sums, std::size_t stride, std::span<std::atomic<bool>> locks) {
@@ -949,6 +1032,13 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
   const LjLanes ljv(lj);
   // The 8 lanes of i's sums, kept for a batch of consecutive slots (subtractOwnSums).
   Vf held[kBatch][3][kParts] = {};
+  // The slots of the outer windows waiting for their pass: room for a batch's most
+  // (each slot writes kLanes entries at least) over the 1,024 that start a pass.
+  constexpr std::uint32_t kOuterPass = 1024;
+  std::int32_t outerSlots[kOuterPass + kBatch * PairList::Layer::kOuterMost + kLanes];
+  std::uint32_t outers = 0;
+  const std::uint16_t* __restrict outer = layer.outer.data();
+  const std::uint8_t* __restrict outerLanes = layer.outerLanes.data();
   const std::uint32_t rows = layer.slots.end - layer.slots.begin;
   for (std::uint32_t k = 0; k < rows; ++k) {
     const std::ptrdiff_t iv = static_cast<std::ptrdiff_t>(layer.slots.begin + k) - lo;
@@ -957,8 +1047,9 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
     // The window's first slot - lo; starts at i - 7, as PairList::Layer::packed counts
     // (which is modulo 2^32: here signed, the same slots).
     std::ptrdiff_t v = iv - 7;
-    for (std::uint32_t e = *code++; e != 0; e = *code++) {
-      if (!PairList::Layer::isWindow(e)) [[unlikely]] {  // a jump (e is not 0)
+    std::uint32_t e = *code++;
+    for (; !PairList::Layer::isEnd(e); e = *code++) {
+      if (!PairList::Layer::isWindow(e)) [[unlikely]] {  // a jump
         v += static_cast<std::int32_t>(PairList::Layer::jumpOf(e));
         continue;
       }
@@ -978,13 +1069,57 @@ void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& 
         storeV(sz + at, fused(fr, dz, loadV(sz + at)));
       }
     }
+    // e: the slot's outer windows (at most kOuterMost).
+    const Vi slot = Vi{} + static_cast<std::int32_t>(iv);
+    std::memcpy(outerSlots + outers, &slot, sizeof slot);
+    if (e > kLanes) [[unlikely]]
+      for (std::uint32_t t = kLanes; t < e; ++t) outerSlots[outers + t] = static_cast<std::int32_t>(iv);
+    outers += e;
     const std::uint32_t b = k % kBatch;
     for (std::uint32_t h = 0; h < kParts; ++h) {
       held[b][0][h] = ax[h];
       held[b][1][h] = ay[h];
       held[b][2][h] = az[h];
     }
-    if (b == kBatch - 1 || k + 1 == rows) subtractOwnSums(held, b + 1, iv - b, sx, sy, sz);
+    if (b != kBatch - 1 && k + 1 != rows) continue;
+    subtractOwnSums(held, b + 1, iv - b, sx, sy, sz);
+    if (outers <= kOuterPass && k + 1 != rows) continue;
+    for (std::uint32_t o = 0; o < outers; ++o) {
+      const std::ptrdiff_t ov = outerSlots[o];
+      const std::ptrdiff_t w = ov + 1 + outer[o];
+      const std::int32_t* partnerLanes = kWindowMasks.lanes[outerLanes[o]];
+      const Vf oxi = splat(qx[ov]), oyi = splat(qy[ov]), ozi = splat(qz[ov]);
+      Vf dx[kParts], dy[kParts], dz[kParts];
+      bool within = false;
+      for (std::uint32_t h = 0; h < kParts; ++h) {
+        const std::ptrdiff_t at = w + h * kLanes;
+        dx[h] = loadV(qx + at) - oxi;
+        dy[h] = loadV(qy + at) - oyi;
+        dz[h] = loadV(qz + at) - ozi;
+        within = within || ljv.anyWithin(dx[h], dy[h], dz[h], partnerLanes + h * kLanes);
+      }
+      if (!within) [[likely]]
+        continue;
+      Vf fx[kParts], fy[kParts], fz[kParts];
+      for (std::uint32_t h = 0; h < kParts; ++h) {
+        const std::ptrdiff_t at = w + h * kLanes;
+        const Vf fr = ljv.forceOverR(dx[h], dy[h], dz[h], partnerLanes + h * kLanes);
+        fx[h] = fr * dx[h];
+        fy[h] = fr * dy[h];
+        fz[h] = fr * dz[h];
+        storeV(sx + at, fused(fr, dx[h], loadV(sx + at)));
+        storeV(sy + at, fused(fr, dy[h], loadV(sy + at)));
+        storeV(sz + at, fused(fr, dz[h], loadV(sz + at)));
+      }
+      float own[3];
+      sumLanes(fx, fy, fz, own);
+      sx[ov] -= own[0];
+      sy[ov] -= own[1];
+      sz[ov] -= own[2];
+    }
+    outer += outers;
+    outerLanes += outers;
+    outers = 0;
   }
   const std::uint32_t from = layer.span.begin - lo;
   const LayerLocks owned(locks);

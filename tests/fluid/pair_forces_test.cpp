@@ -942,8 +942,9 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
   for (const PairList::Layer& l : list.layers()) {
     ASSERT_TRUE(l.isPacked());
     EXPECT_TRUE(l.start.empty());
-    codes += l.packed.size();
-    capacity += l.packed.capacity();
+    codes += l.packed.size() + l.outer.size();
+    capacity += l.packed.capacity() + l.outer.capacity();
+    windows += l.outer.size();
     for (const std::uint16_t code : l.packed) windows += PairList::Layer::isWindow(code) ? 1 : 0;
   }
   // Per slot, from its partners sorted: the aligned groups of 8 they fall in, and the
@@ -976,8 +977,115 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
   EXPECT_LT(2.0 * static_cast<double>(capacity) / n, 30.0);
 }
 
+// The outer windows of a packed list (PairList::Layer::outer): on the LJ liquid at
+// cutoff 2.0 (fcc, its third shell at 2.06 sigma lies in the skin) a fifth or more of
+// the windows, none with a partner within the cutoff when the list was built. Then
+// every particle moves by up to a third of the skin,
+// so that some outer windows hold pairs within the cutoff: the kernel evaluates them
+// (the forces match the reference to float rounding), in both copies, bitwise the same
+// on 1, 2 and 3 threads and in the phases and all at once.
+TEST(ClosedForm, OuterWindowsAreEvaluatedOnceTheirPartnersComeWithinTheCutoff) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable(1.0, 2.0);
+  const float a = std::cbrt(4.0f / 0.8442f);
+  ParticleStore s;
+  const ParticleStore jitter = scenarios::randomCloud(12 * 12 * 12 * 4, -0.02f, 0.02f, 0, 1, 53);
+  const float basis[4][3] = {{0, 0, 0}, {0.5f, 0.5f, 0}, {0.5f, 0, 0.5f}, {0, 0.5f, 0.5f}};
+  std::size_t q = 0;
+  for (int z = 0; z < 12; ++z)
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 12; ++x)
+        for (const auto& b : basis) {
+          s.add(a * (static_cast<float>(x) + b[0]) + jitter.px[q],
+                a * (static_cast<float>(y) + b[1]) + jitter.py[q],
+                a * (static_cast<float>(z) + b[2]) + jitter.pz[q], 0, 0, 0, 0, 0);
+          ++q;
+        }
+  const float skin = 0.3f, cut2 = 4.0f;
+  neighbors::CellGrid grid;
+  grid.rebuild(s, 2.0f + skin);
+  const auto r2 = [](const ParticleStore& p, std::uint32_t i, std::uint32_t j) {
+    const float dx = p.px[j] - p.px[i], dy = p.py[j] - p.py[i], dz = p.pz[j] - p.pz[i];
+    return dx * dx + dy * dy + dz * dz;
+  };
+  // Each outer window's partners: fn(slot, partners of the window).
+  const auto forEachOuter = [](const PairList& list, auto&& fn) {
+    for (const PairList::Layer& l : list.layers()) {
+      ASSERT_TRUE(l.isPacked());
+      ASSERT_EQ(l.outer.size(), l.outerLanes.size());
+      std::size_t o = 0;
+      std::uint32_t k = 0;
+      for (const std::uint16_t code : l.packed) {
+        if (!PairList::Layer::isEnd(code)) continue;
+        for (std::uint32_t n = 0; n < code; ++n, ++o) {
+          const std::uint32_t i = l.slots.begin + k, w = i + 1 + l.outer[o];
+          std::vector<std::uint32_t> partners;
+          for (std::uint32_t bits = PairList::Layer::windowLanes(l.outerLanes[o]); bits != 0;
+               bits &= bits - 1)
+            partners.push_back(w + static_cast<std::uint32_t>(std::countr_zero(bits)));
+          fn(i, partners);
+        }
+        ++k;
+      }
+      EXPECT_EQ(o, l.outer.size());
+      EXPECT_EQ(k, l.slots.end - l.slots.begin);
+    }
+  };
+  std::vector<Force> first;
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    PairList list;
+    list.build(grid, table, s, skin);
+    std::size_t outer = 0, windows = 0;
+    for (const PairList::Layer& l : list.layers()) {
+      outer += l.outer.size();
+      windows += l.outer.size();
+      for (const std::uint16_t code : l.packed) windows += PairList::Layer::isWindow(code) ? 1 : 0;
+    }
+    EXPECT_GT(static_cast<double>(outer), 0.2 * static_cast<double>(windows));
+    forEachOuter(list, [&](std::uint32_t i, const std::vector<std::uint32_t>& partners) {
+      for (const std::uint32_t j : partners) EXPECT_GE(r2(s, i, j), cut2) << i << " " << j;
+    });
+    // The move: each particle by up to skin / 3 on each axis (under skin / 2 in all).
+    ParticleStore moved = s;
+    const ParticleStore shift = scenarios::randomCloud(s.size(), -0.1f, 0.1f, 0, 1, 59);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      moved.px[i] += 0.8f * shift.px[i];
+      moved.py[i] += 0.8f * shift.py[i];
+      moved.pz[i] += 0.8f * shift.pz[i];
+    }
+    std::size_t woken = 0;
+    forEachOuter(list, [&](std::uint32_t i, const std::vector<std::uint32_t>& partners) {
+      bool any = false;
+      for (const std::uint32_t j : partners) any = any || r2(moved, i, j) < cut2;
+      woken += any ? 1 : 0;
+    });
+    EXPECT_GT(woken, 100u);
+    EXPECT_LT(woken, outer);
+    zeroForces(moved);
+    accumulatePairForces(list, table, moved);
+    expectMatchesReference(table, moved, 2e-5);
+    if (first.empty()) first = moved.f;
+    EXPECT_EQ(moved.f, first);  // the two copies
+    for (const std::size_t threads : {1u, 2u, 3u}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      ParticleStore again = moved;
+      zeroForces(again);
+      accumulatePairForces(list, table, again);
+      EXPECT_EQ(again.f, first) << threads << " threads";
+      std::fill(again.f.begin(), again.f.end(), Force{1e30f, -2.0f, 3.0f, 4.0f});
+      setPairForces(list, table, again);
+      EXPECT_EQ(std::memcmp(again.f.data(), first.data(), first.size() * sizeof(Force)), 0)
+          << threads << " threads";
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // A packed layer's codes, written by hand: windows, a jump ahead, a jump back, the end
-// of each slot; decoded into partners.
+// of each slot with its count of outer windows, and those; decoded into partners.
 TEST(PairList, PackedCodesDecodeIntoPartners) {
   using Layer = PairList::Layer;
   Layer layer;
@@ -988,29 +1096,35 @@ TEST(PairList, PackedCodesDecodeIntoPartners) {
   // A window `step` slots on; field bit c - 1: its lane c (lane 0 always) is a partner.
   const auto window = [](std::uint32_t step, std::uint32_t field) { return static_cast<std::uint16_t>(step << 7 | field); };
   const auto jump = [](std::int32_t units) { return static_cast<std::uint16_t>(1u << 7 | (static_cast<std::uint32_t>(units) & 127u)); };
-  layer.packed = {window(8, 0b1),          // slot 17 and lane 1: 18
-                  window(23, 0),           // 40
-                  jump(10),                // 40 + 2,560
-                  window(30, 0b1000000),   // 2,630 and lane 7: 2,637
-                  jump(-5),                // 2,630 - 1,280
-                  window(511, 0),          // 1,861
-                  0,
-                  0};  // slot 17: no partners
+  layer.packed = {window(8, 0b1),         // slot 17 and lane 1: 18
+                  window(23, 0),          // 40
+                  jump(10),               // 40 + 2,560
+                  window(30, 0b1000000),  // 2,630 and lane 7: 2,637
+                  jump(-5),               // 2,630 - 1,280
+                  window(511, 0),         // 1,861
+                  2,                      // the end, and 2 outer windows
+                  0};                     // slot 17: no partners, no outer windows
+  layer.outer = {3, 700};                 // 16 + 1 + 3 = 20, 717
+  layer.outerLanes = {0b0000101, 0};      // 20, lanes 1 and 3: 21, 23; 717
   EXPECT_TRUE(Layer::isJump(jump(-64)));
   EXPECT_TRUE(Layer::isJump(jump(63)));
   EXPECT_FALSE(Layer::isJump(window(8, 0)));
   EXPECT_FALSE(Layer::isJump(0));
+  EXPECT_FALSE(Layer::isJump(2));
+  EXPECT_TRUE(Layer::isEnd(2));
+  EXPECT_TRUE(Layer::isEnd(Layer::kOuterMost));
+  EXPECT_FALSE(Layer::isEnd(jump(0)));
   EXPECT_EQ(static_cast<std::int32_t>(Layer::jumpOf(jump(-64))), -64 * Layer::kJumpSlots);
   EXPECT_EQ(static_cast<std::int32_t>(Layer::jumpOf(jump(63))), 63 * Layer::kJumpSlots);
   EXPECT_EQ(Layer::windowLanes(window(9, 0b1000001)), 0b10000011u);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> got;
   layer.forEachPair([&](std::uint32_t k, std::uint32_t j) { got.emplace_back(k, j); });
-  const std::vector<std::pair<std::uint32_t, std::uint32_t>> want = {{0, 17},   {0, 18},   {0, 40},
-                                                                     {0, 2630}, {0, 2637}, {0, 1861}};
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> want = {
+      {0, 17}, {0, 18}, {0, 40}, {0, 2630}, {0, 2637}, {0, 1861}, {0, 20}, {0, 21}, {0, 23}, {0, 717}};
   EXPECT_EQ(got, want);
   std::vector<std::uint32_t> of0;
   layer.forEachPartner(0, [&](std::uint32_t j) { of0.push_back(j); });
-  EXPECT_EQ(of0, (std::vector<std::uint32_t>{17, 18, 40, 2630, 2637, 1861}));
+  EXPECT_EQ(of0, (std::vector<std::uint32_t>{17, 18, 40, 2630, 2637, 1861, 20, 21, 23, 717}));
   std::size_t of1 = 0;
   layer.forEachPartner(1, [&](std::uint32_t) { ++of1; });
   EXPECT_EQ(of1, 0u);
