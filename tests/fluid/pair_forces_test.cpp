@@ -1084,6 +1084,39 @@ TEST(ClosedForm, OuterWindowsAreEvaluatedOnceTheirPartnersComeWithinTheCutoff) {
   EXPECT_GE(checked, 1);
 }
 
+// A slot with more windows beyond the cutoff than its end code can count
+// (PairList::Layer::kOuterMost): a lattice with a skin twice the cutoff, where each slot
+// lists hundreds of partners that lie beyond it. The first kOuterMost go apart, the rest
+// stay in the slot's codes: still exactly the plain list's pairs, and the reference's
+// forces, in both copies.
+TEST(ClosedForm, SlotsWithMoreOuterWindowsThanTheirEndCodeCountsKeepTheRest) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable(0.3, 0.9);
+  const float skin = 2.0f, cell = 0.9f + skin;
+  const ParticleStore jitter = scenarios::randomCloud(16 * 16 * 16, -0.05f, 0.05f, 0, 1, 67);
+  ParticleStore s;
+  std::size_t q = 0;
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x, ++q)
+        s.add(0.45f * static_cast<float>(x) + jitter.px[q], 0.45f * static_cast<float>(y) + jitter.py[q],
+              0.45f * static_cast<float>(z) + jitter.pz[q], 0, 0, 0, 0, 0);
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    const PairList packed = expectPackedListsThePlainPairs(table, s, cell, skin);
+    std::size_t full = 0, outer = 0;
+    for (const PairList::Layer& l : packed.layers()) {
+      outer += l.outer.size();
+      for (const std::uint16_t code : l.packed) full += code == PairList::Layer::kOuterMost ? 1 : 0;
+    }
+    EXPECT_GT(full, 10u);  // slots whose end code is full (54 when this was written)
+    EXPECT_GT(outer, full * PairList::Layer::kOuterMost);
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // A packed layer's codes, written by hand: windows, a jump ahead, a jump back, the end
 // of each slot with its count of outer windows, and those; decoded into partners.
 TEST(PairList, PackedCodesDecodeIntoPartners) {
