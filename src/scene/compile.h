@@ -1,5 +1,6 @@
 #pragma once
 /// SceneDesc -> Model (read-only) + State (mutable).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ struct Compiled {
 /// that order; then every object's particles, see addBodies) from a validated description. Mesh fills load their mesh from
 /// desc.baseDir / Geometry again (IoError or InputError if it changed since reading).
 Compiled compile(const SceneDesc& desc);
+
+/// The spacing at which a simple cubic lattice (what every fill makes) of particles
+/// interacting through `f` is at rest, gravity aside: where the sum of r F(r) over a
+/// particle's neighbours goes from pushing apart to pulling together as the spacing
+/// grows; of several, the nearest to `near`. None where there is none between a quarter
+/// of f's cutoff and the cutoff (a function that only pushes or only pulls).
+std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near);
 
 /// The solver's integrator for a scene's.
 solver::Integrator toSolver(Integrator i);

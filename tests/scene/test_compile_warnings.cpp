@@ -532,15 +532,24 @@ TEST(CompileWarnings, NamesAParticleSizeFarFromTheSpacing) {
   const std::string cube = "<Fill><Shape>box</Shape><Min>-0.05 0.005 -0.05</Min><Max>0.05 0.05 0.05</Max>"
                            "<Spacing>0.011</Spacing></Fill>";
   const std::vector<std::string> left = warningsOf(centimetres + "<Fluid><Name>goo</Name>" + cube + "</Fluid>");
-  ASSERT_EQ(left.size(), 2u);
+  ASSERT_EQ(left.size(), 3u);
   EXPECT_NE(left[0].find("Fluid 'goo': ParticleSize 1 is 90.9 times the spacing of its particles (0.011)"),
             std::string::npos)
       << left[0];
   EXPECT_NE(left[1].find("Fluid 'goo': the container is 0.2 across, narrower than its ParticleSize 1"),
             std::string::npos)
       << left[1];
-  EXPECT_TRUE(
-      warningsOf(centimetres + "<Fluid><Name>goo</Name><ParticleSize>0.01</ParticleSize>" + cube + "</Fluid>").empty());
+  // Its force's distances are a unit's too: the fill would fly apart.
+  EXPECT_NE(left[2].find(
+                "Fluid 'goo': the fill at line 2 has Spacing 0.011, but this fluid's own force holds such a "
+                "lattice at rest about 0.958 apart, so it swells to over a thousand times its volume"),
+            std::string::npos)
+      << left[2];
+  EXPECT_TRUE(warningsOf(centimetres +
+                         "<Fluid><Name>goo</Name><ParticleSize>0.01</ParticleSize><FiniteDistance>0.011</"
+                         "FiniteDistance><InteractionDistance>0.0165</InteractionDistance>" +
+                         cube + "</Fluid>")
+                  .empty());
   // Far too small is as wrong: the walls let particles overlap them.
   const std::vector<std::string> tiny = warningsOf(kBox + "<Fluid><Name>a</Name><ParticleSize>0.1</ParticleSize>" +
                                                    fill("0 0 0", "2 2 2") + "</Fluid>");
@@ -608,6 +617,81 @@ TEST(CompileWarnings, CountsParticlesThatSitExactlyOnAnother) {
                                                      "</Fluid><Fluid><Name>b</Name><Particles>1 1 1</Particles></Fluid>");
   ASSERT_EQ(across.size(), 1u);
   EXPECT_NE(across[0].find("1 particle sits exactly"), std::string::npos) << across[0];
+}
+
+}  // namespace
+}  // namespace softsub::scene
+
+namespace softsub::scene {
+namespace {
+
+// The rest spacing of a cubic fill, against what can be worked out by hand: a force
+// whose cutoff leaves only the 6 nearest neighbours in reach rests where it is zero
+// (the seed's shape: at FiniteDistance); with the next shells in reach their pull puts
+// the rest below it; a force that only pushes has none.
+TEST(CubicRestSpacing, IsWhereTheNeighboursForcesBalance) {
+  // Cutoff 1.3: at spacings near 1 the second shell (1.41) is out of reach.
+  const std::optional<double> nearest = cubicRestSpacing(forces::LennardJones{30, 1, -20, 400, 1.3}, 1.0);
+  ASSERT_TRUE(nearest.has_value());
+  EXPECT_NEAR(*nearest, 1.0, 1e-9);
+  // It scales with the distances, whatever the near guess.
+  const std::optional<double> scaled = cubicRestSpacing(forces::LennardJones{30, 0.01, -20, 400, 0.013}, 5.0);
+  ASSERT_TRUE(scaled.has_value());
+  EXPECT_NEAR(*scaled, 0.01, 1e-11);
+  // The default fluid (cutoff 1.5): 12 second neighbours at 1.35-1.41 pull it in. The
+  // sum of r F(r) at the rest is 0 by the formula, computed here on its own.
+  const forces::PairFunction seed = forces::LennardJones{30, 1, -20, 400, 1.5};
+  const std::optional<double> rest = cubicRestSpacing(seed, 1.0);
+  ASSERT_TRUE(rest.has_value());
+  EXPECT_LT(*rest, 0.99);
+  EXPECT_GT(*rest, 0.9);
+  const auto virial = [&](double a) {
+    return 6 * a * forces::evaluate(seed, a) +
+           12 * std::sqrt(2.0) * a * forces::evaluate(seed, std::sqrt(2.0) * a);
+  };
+  EXPECT_GT(virial(*rest - 1e-6), 0);  // the third shell (1.73 a) is beyond 1.5 here
+  EXPECT_LT(virial(*rest + 1e-6), 0);
+  // Only pushing: no rest.
+  EXPECT_FALSE(cubicRestSpacing(forces::Linear{5, 1, 0, 5}, 0.5).has_value());
+}
+
+// A fill far from its fluid's rest spacing is named with the volume it will gain or
+// lose (the jelly example's cube at 1.12 lost 41% in mid-air in a review); one at the
+// rest spacing, or one whose fluid's own function a Pair replaces with one resting at
+// the fill's spacing, is not.
+TEST(CompileWarnings, NamesAFillFarFromItsFluidsRestSpacing) {
+  const std::string jelly =
+      "<Fluid><Name>jelly</Name><InteractionDistance>2</InteractionDistance>"
+      "<Amplitude>150</Amplitude><MinimumForce>-150</MinimumForce>"
+      "<MaximumForce>2000</MaximumForce><ParticleSize>{0}</ParticleSize>"
+      "<Fill><Shape>box</Shape><Min>-3 1 -3</Min><Max>3 7 3</Max><Spacing>{0}</Spacing>"
+      "</Fill></Fluid>";
+  const std::vector<std::string> w = warningsOf(kBox + fmt::format(fmt::runtime(jelly), 1.12));
+  ASSERT_EQ(w.size(), 1u) << fmt::format("{}", fmt::join(w, "\n"));
+  EXPECT_NE(
+      w[0].find(
+          "Fluid 'jelly': the fill at line 3 has Spacing 1.12, but this fluid's own force holds such a "
+          "lattice at rest about 0.945 apart, so it shrinks by about 40% in volume in its first frames; "
+          "fill at Spacing 0.945, or scale FiniteDistance and InteractionDistance by 1.19"),
+      std::string::npos)
+      << w[0];
+  EXPECT_TRUE(warningsOf(kBox + fmt::format(fmt::runtime(jelly), 0.945)).empty());
+  // Swelling: the mud of a review, filled at 0.8.
+  const std::vector<std::string> mud =
+      warningsOf(kBox +
+                 "<Fluid><Name>mud</Name><Amplitude>20</Amplitude><MinimumForce>-6</MinimumForce>"
+                 "<ParticleSize>0.8</ParticleSize><Fill><Shape>box</Shape><Min>-3 0 -3</Min><Max>3 2 3</Max>"
+                 "<Spacing>0.8</Spacing></Fill></Fluid>");
+  ASSERT_EQ(mud.size(), 1u) << fmt::format("{}", fmt::join(mud, "\n"));
+  EXPECT_NE(mud[0].find("so it swells by about 80% in volume"), std::string::npos) << mud[0];
+  // A Pair of the fluid with itself replaces the function the rest is worked out from:
+  // the jelly's shape scaled by 1.185 rests at 1.12.
+  EXPECT_TRUE(
+      warningsOf(kBox + fmt::format(fmt::runtime(jelly), 1.12) +
+                 "<Interactions><Pair><A>jelly</A><B>jelly</B><LennardJones><Amplitude>150</Amplitude>"
+                 "<FiniteDistance>1.185</FiniteDistance><Min>-150</Min><Max>2000</Max>"
+                 "<Cutoff>2.37</Cutoff></LennardJones></Pair></Interactions>")
+          .empty());
 }
 
 }  // namespace

@@ -65,7 +65,7 @@ TEST_P(Restore, ContinuesBitForBitAsTheRunThatWroteIt) {
   EXPECT_EQ(stateBytes(restored), stateBytes(original));
   // Several frames, so several pair-list rebuilds and re-sorts after the restored list.
   const std::int64_t builds = original.listBuilds();
-  for (int f = 0; f < 7; ++f) {
+  for (int f = 0; f < 10; ++f) {
     original.advanceFrame();
     restored.advanceFrame();
     ASSERT_EQ(stateBytes(restored), stateBytes(original)) << "frame " << original.state().frame;
