@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cache/folder_lock.h"
 #include "cache/frame_writer.h"
 #include "core/error.h"
 #include "number_checks.h"
@@ -63,6 +64,8 @@ int meshCommand(const MeshOptions& o) {
                            "mesh a folder of one scene, or run the scenes into folders of their own");
   }
   const surface::SurfaceSettings& settings = o.surface;
+  // One writer at a time in the folder: a run still writing it, or a second mesh.
+  const cache::FolderLock lock(playback.folder());
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 
   const bool chatty = stderrIsTerminal() && !o.quiet;
@@ -82,7 +85,8 @@ int meshCommand(const MeshOptions& o) {
     const FrameSnapshot frame = playback.load(i);
     if (!progress) {
       for (const FluidSnapshot& f : frame.fluids) particles += f.ids.size();
-      progress.emplace(chatty, lastFrame, particles);
+      progress.emplace(chatty, lastFrame, particles, playback.frameCount());
+      progress->begin(frame.frame, "meshing");
     }
     writer.onFrame(frame);
     updateFrameManifest(playback.folder(), playback.sceneName(), frame.frame, writer.lastWritten());

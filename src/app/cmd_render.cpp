@@ -316,10 +316,11 @@ int renderCommand(const RenderOptions& o) {
         lastDrawn = rec.frameNumber(i);
         if (!firstDrawn) firstDrawn = i;
       }
-    std::size_t particles = 0;
+    std::size_t particles = 0, drawn = 0;
     if (firstDrawn)
       for (const FluidSnapshot& f : rec.load(*firstDrawn).fluids) particles += f.ids.size();
-    ProgressLine progress(chatty, lastDrawn, particles);
+    for (std::size_t i = 0; i < rec.frameCount(); ++i) drawn += range.contains(rec.frameNumber(i)) ? 1 : 0;
+    ProgressLine progress(chatty, lastDrawn, particles, drawn);
     for (std::size_t i = 0; i < rec.frameCount(); ++i) {
       if (!range.contains(rec.frameNumber(i))) continue;
       if (stop.load()) break;

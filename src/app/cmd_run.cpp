@@ -13,26 +13,27 @@
 #include <fmt/format.h>
 
 #include "cache/atomic_file.h"
+#include "cache/folder_lock.h"
 #include "cache/frame_writer.h"
 #include "cache/manifest.h"
 #include "cache/naming.h"
 #include "core/error.h"
 #include "number_checks.h"
-#include "solver/stability.h"
 #include "progress.h"
 #include "run_journal.h"
 #include "scene/compile.h"
 #include "scene/schema.h"
 #include "scene/writer.h"
-#include "solver/checkpoint.h"
 #include "scene_source.h"
-#include "session/object_meshes.h"
 #include "scene_view.h"
-#include "surface_options.h"
+#include "session/object_meshes.h"
+#include "solver/checkpoint.h"
 #include "solver/energy.h"
 #include "solver/frame_loop.h"
+#include "solver/stability.h"
 #include "stop_signal.h"
 #include "surface/surface_writer.h"
+#include "surface_options.h"
 #include "text_format.h"
 
 namespace softsub::app {
@@ -237,6 +238,9 @@ int runCommand(const RunOptions& o) {
   const std::atomic<bool>& stop = installStopHandlers();
   // Everything is checked before any folder or file is created.
   const cache::Formats formats = checkCommandLine(o);
+  TerminalNote reading(
+      stderrIsTerminal() && !o.quiet,
+      fmt::format("reading {} ...", o.scene.empty() ? "the default scene" : displayFile(o.scene)));
   LoadedScene loaded = loadScene(o.scene, o.maxParticles);
   applyOverrides(o, loaded.desc);
   if (o.adaptive && o.maxSubsteps < loaded.desc.simulation.substeps)
@@ -303,6 +307,7 @@ int runCommand(const RunOptions& o) {
   // farm log gets errors and warnings only (a warning is about this run's result: a farm
   // log must show it too). --quiet leaves errors alone.
   const bool chatty = stderrIsTerminal() && !o.quiet;
+  reading.clear();
   if (!o.quiet) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", shownFile, w);
@@ -344,6 +349,11 @@ int runCommand(const RunOptions& o) {
   // go; starting afresh, the folder's manifests, checkpoints and frames of this scene's
   // earlier run go too.
   ResumePoint resumed;
+  // One run at a time in a folder: a second one's fresh start would delete this one's
+  // files under it (a review: the first run then failed as if the disk had, or ended
+  // with success over files that were no longer its own).
+  std::optional<cache::FolderLock> lock;
+  if (anyFormat(formats)) lock.emplace(outDir);
   if (anyFormat(formats)) {
     if (o.resume) {
       resumed = resumeFrom(outDir, loaded.name, fingerprint, sim);
@@ -464,6 +474,7 @@ int runCommand(const RunOptions& o) {
   const std::string where = anyFormat(formats) ? folderText(outDir) : std::string("nothing written");
   bool complete = false;
   const auto start = std::chrono::steady_clock::now();
+  progress.begin(sim.state().frame, hooks.emitInitial ? "writing frame 0" : "simulating");
   try {
     complete = solver::runFrames(sim, lastFrame, observers, hooks);
   } catch (const BlowUpError& e) {
@@ -508,7 +519,9 @@ int runCommand(const RunOptions& o) {
   if (chatty)
     fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}{}\n",
                countOf(static_cast<std::uint64_t>(progress.framesDone()), "frame"),
-               countOf(particles, "particle"), seconds, progress.secondsPerFrame() * 1e3, where, previewNote);
+               countOf(particles, "particle"), seconds,
+               seconds / static_cast<double>(std::max<std::int64_t>(progress.framesDone(), 1)) * 1e3, where,
+               previewNote);
   return static_cast<int>(ExitCode::Ok);
 }
 

@@ -10,23 +10,30 @@
 namespace softsub::app {
 
 /// Draws `frame 12/48 | 10,000 particles | 3.2 ms/frame | ETA 0:05` on stderr,
-/// redrawn in place with \r, when enabled (stderr is a terminal and not --quiet).
+/// redrawn in place with \r, when enabled (stderr is a terminal and not --quiet). With a
+/// count of items (mesh, render: the frames of a recording, frame 0 among them), `frame
+/// 2/48 (3 of 49)`, and the ETA from the items left.
 class ProgressLine {
  public:
   /// `enabled` false makes every call a no-op.
-  ProgressLine(bool enabled, std::int64_t lastFrame, std::size_t particles);
+  ProgressLine(bool enabled, std::int64_t lastFrame, std::size_t particles, std::size_t items = 0);
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
   /// Ends the line if it was drawn and not ended.
   ~ProgressLine();
 
-  /// After each completed frame (the frame loop's onProgress hook).
+  /// Before the first frame: `frame F/LAST | N particles | <what>` (a run's frame 0 can
+  /// take long: a million particles' surfaces, a large mesh).
+  void begin(std::int64_t frame, const std::string& what);
+  /// After each completed frame (the frame loop's onProgress hook); frame 0 written
+  /// before any stepping (FrameProgress::initial) counts in the time, not in the frames.
   void update(const solver::FrameProgress& p);
   /// Ends the line with a newline (before a summary or an error message).
   void end();
-  /// Mean wall seconds per simulated frame (simulation plus writing) so far.
+  /// Wall seconds (simulation plus writing, frame 0's included) per frame simulated so
+  /// far, or per item with a count of items; 0 before the first.
   [[nodiscard]] double secondsPerFrame() const;
-  /// Frames completed since the start.
+  /// Frames simulated since the start (items with a count of items).
   [[nodiscard]] std::int64_t framesDone() const { return done_; }
 
  private:
@@ -36,10 +43,26 @@ class ProgressLine {
   bool drawn_ = false;
   std::int64_t last_;
   std::size_t particles_;
+  std::size_t items_;
   std::int64_t done_ = 0;
   double busySeconds_ = 0;
   std::size_t width_ = 0;
   std::chrono::steady_clock::time_point lastDraw_{};
+};
+
+/// A note on a terminal (`reading shots/big.scene ...`) while something slow runs
+/// before the progress line can be drawn (a large mesh took 13 s to read in a review),
+/// erased by clear() or when the note goes out of scope (an error unwinding past it).
+class TerminalNote {
+ public:
+  TerminalNote(bool enabled, const std::string& text);
+  TerminalNote(const TerminalNote&) = delete;
+  TerminalNote& operator=(const TerminalNote&) = delete;
+  ~TerminalNote();
+  void clear();
+
+ private:
+  std::size_t width_ = 0;
 };
 
 /// True when stderr is a terminal.

@@ -14,7 +14,15 @@ bool runFrames(Simulation& sim, std::int64_t lastFrame, std::span<FrameObserver*
     sim.snapshot(snap);
     for (FrameObserver* o : observers) o->onFrame(snap);
   };
-  if (sim.state().frame == 0 && hooks.emitInitial) emit();
+  if (sim.state().frame == 0 && hooks.emitInitial) {
+    const auto t0 = Clock::now();
+    emit();
+    if (hooks.onProgress) {
+      FrameProgress p{0, lastFrame, 0, std::chrono::duration<double>(Clock::now() - t0).count()};
+      p.initial = true;
+      hooks.onProgress(p);
+    }
+  }
   while (sim.state().frame < lastFrame) {
     if (hooks.stop && hooks.stop->load()) return false;
     const auto t0 = Clock::now();

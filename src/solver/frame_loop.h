@@ -17,11 +17,15 @@ struct FrameProgress {
   std::int64_t lastFrame = 0;   ///< the frame the loop runs to
   double stepSeconds = 0;       ///< wall time spent simulating this frame
   double writeSeconds = 0;      ///< wall time spent in observers for this frame
+  /// Frame 0 handed to the observers before any stepping (FrameLoopHooks::emitInitial):
+  /// written, not simulated.
+  bool initial = false;
 };
 
 /// Optional hooks of a frame loop.
 struct FrameLoopHooks {
-  std::function<void(const FrameProgress&)> onProgress;  ///< after each frame
+  /// After each frame, frame 0 included when it is handed out (FrameProgress::initial).
+  std::function<void(const FrameProgress&)> onProgress;
   const std::atomic<bool>* stop = nullptr;  ///< checked between frames; true = stop early
   std::int64_t recordUpTo = -1;             ///< observers see frames <= this (-1: all)
   /// Hand a simulation at frame 0 to the observers before stepping (false when it was

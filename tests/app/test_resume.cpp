@@ -405,3 +405,53 @@ TEST(BlowUpCheck, TheSpeedLimitStopsARunAtItsSubstepWithEarlierFramesComplete) {
 
 }  // namespace
 }  // namespace softsub::apptest
+
+namespace softsub::apptest {
+namespace {
+
+// A second run started into a folder a run is writing (a farm task re-queued while its
+// first attempt still runs) is refused with exit code 2, naming the first run, and
+// changes nothing; so is a `mesh` of that folder. The first run is not disturbed, and
+// once it has stopped the folder takes a run again. (A review: the second run's fresh
+// start deleted the first run's files, which then failed with exit code 3 or ended
+// with success over files no longer its own.)
+TEST(Resume, ASecondRunIntoAFolderBeingWrittenIsRefused) {
+  TempDir tmp;
+  const fs::path out = tmp / "shot";
+  const int pid = spawnSoftsub({"run", (examplesDir() / "softsub-demo.scene").string(), "--frames", "100000",
+                                "--formats", "sim", "--out", out.string()},
+                               tmp / "err");
+  ASSERT_GT(pid, 0);
+  // Until its frame 1 is complete: the lock is taken before frame 0.
+  const auto launched = std::chrono::steady_clock::now();
+  while (!fs::exists(out / "manifest" / "softsub-demo.0001.manifest") &&
+         std::chrono::steady_clock::now() - launched < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(fs::exists(out / "manifest" / "softsub-demo.0001.manifest")) << readFile(tmp / "err");
+  const RunResult second =
+      runSoftsub("run " + scenePath("softsub-demo.scene") + " --frames 3 --out " + quote(out), tmp.path());
+  EXPECT_EQ(second.code, 2) << second.err;
+  EXPECT_NE(
+      second.err.find("is being written by another softsub run (pid " + std::to_string(pid) + " on host "),
+      std::string::npos)
+      << second.err;
+  const RunResult mesh = runSoftsub("mesh " + quote(out), tmp.path());
+  EXPECT_EQ(mesh.code, 2) << mesh.err;
+  EXPECT_FALSE(fs::exists(out / "mesh"));
+  // The first run is still going and still has its frame 0.
+  EXPECT_TRUE(fs::exists(out / "softsub-demo.0000.sim"));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << readFile(tmp / "err");
+  EXPECT_FALSE(fs::exists(out / ".softsub.lock")) << "the run removes its lock file";
+  const RunResult after = runSoftsub(
+      "run -q " + scenePath("softsub-demo.scene") + " --frames 2 --formats sim --out " + quote(out),
+      tmp.path());
+  EXPECT_EQ(after.code, 0) << after.err;
+  EXPECT_EQ(checkCompleteFrames(out, "softsub-demo"), 3);
+}
+
+}  // namespace
+}  // namespace softsub::apptest

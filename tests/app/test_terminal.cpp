@@ -19,8 +19,12 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
       tmp.path());
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string& t = r.out;
-  // Every draw starts with \r and rewrites the line in place; the first frame is always
+  // Every draw starts with \r and rewrites the line in place; frame 0 is drawn before it
+  // is written (it can take long) and once written, the first frame simulated is always
   // drawn, and so is the last.
+  const std::size_t zero = t.find("\rframe 0/3 | 1,728 particles | writing frame 0");
+  ASSERT_NE(zero, std::string::npos) << t;
+  EXPECT_NE(t.find("\rframe 0/3 | 1,728 particles | written, simulating", zero), std::string::npos) << t;
   const std::size_t first = t.find("\rframe 1/3 | 1,728 particles | ");
   ASSERT_NE(first, std::string::npos) << t;
   const std::size_t last = t.find("\rframe 3/3 | 1,728 particles | ");
@@ -31,7 +35,17 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
   // The line is ended before the summary, which comes last.
   const std::size_t done = t.find("\r\ndone: 3 frames, 1,728 particles, ");
   ASSERT_NE(done, std::string::npos) << t;
+  EXPECT_LT(zero, first);
   EXPECT_LT(last, done);
+  // The summary's time a frame is its total over the frames simulated (frame 0's writing
+  // included): a 1M-particle surface run's summary left frame 0 out (a review).
+  double total = 0, perFrame = 0;
+  ASSERT_EQ(std::sscanf(t.c_str() + done, "\r\ndone: 3 frames, 1,728 particles, %lf s (%lf ms/frame)", &total,
+                        &perFrame),
+            2)
+      << t.substr(done);
+  // (the total is printed to 0.01 s: within 5 ms of it, so 5 / 3 ms a frame)
+  EXPECT_NEAR(perFrame, total / 3 * 1000, 0.05 + 5.0 / 3) << t.substr(done);
   EXPECT_NE(t.find(" ms/frame), output: " + (tmp / "o").string() + "/\r\n", done), std::string::npos) << t;
   EXPECT_NE(t.find("note: -drawPerFrame applies to the viewer"), std::string::npos) << t;
   EXPECT_EQ(listFrameFiles(tmp / "o").size(), 4u);
@@ -51,7 +65,8 @@ TEST(Terminal, RenderOfARecordingDrawsItsProgressToTheRangesLastFrame) {
       "render " + quote(tmp / "o") + " --frames 0:3 --width 64 --height 36 --out " + quote(tmp / "p"),
       tmp.path());
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("\rframe 3/3 | 1,728 particles | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\rframe 0/3 (1 of 4) | 1,728 particles | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\rframe 3/3 (4 of 4) | 1,728 particles | "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" ms/frame | ETA 0:00"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("/6 |"), std::string::npos) << r.out;
 }
