@@ -335,7 +335,7 @@ std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double nea
     }
     return w;
   };
-  constexpr int kSteps = 600;
+  constexpr int kSteps = 200;  // roots closer than 0.4% of the cutoff are not told apart
   const double lo = cut / kReach, step = (cut - lo) / kSteps;
   std::optional<double> best;
   double previous = virial(lo);
