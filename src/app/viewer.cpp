@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 // OpenGL's prototypes first; GLFW must not pull in its own gl.h.
@@ -14,6 +15,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "cache/atomic_file.h"
+#include "cache/folder_lock.h"
 #include "core/error.h"
 #include "render/offscreen.h"
 #include "render/renderer.h"
@@ -253,8 +255,12 @@ void Viewer::writeCaches() {
     // an earlier run of this scene left in the folder go first, as when `run` starts
     // afresh, so that `run --resume` and `info` cannot take the viewer's frames for that
     // run's, nor a package mix the two.
-    if (session_->recordedFrames() > 0)
+    // Not while a run writes the folder (cache::FolderLock, as `run` and `mesh` take it).
+    std::optional<cache::FolderLock> lock;
+    if (session_->recordedFrames() > 0) {
+      lock.emplace(session_->outputDir());
       forgetEarlierRun(session_->outputDir(), session_->sceneName(), inputFiles_);
+    }
     const auto written = session_->writeRecorded();
     if (written.frames == 0) {
       setMessage(options_.record == 0 ? "nothing written: --record 0 keeps no frames"
@@ -263,6 +269,9 @@ void Viewer::writeCaches() {
       setMessage(fmt::format("wrote {} frames to {}", written.frames, written.folder.string()));
     }
   } catch (const IoError& e) {
+    setMessage(e.what(), true);
+    writeFailed_ = true;
+  } catch (const InputError& e) {  // the folder is being written by a run
     setMessage(e.what(), true);
     writeFailed_ = true;
   }

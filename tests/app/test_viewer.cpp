@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "app_test_util.h"
+#include "cache/folder_lock.h"
 #include "cache/manifest.h"
 #include "cache/sim_format.h"
 #include "picture_checks.h"
@@ -154,6 +155,23 @@ TEST(Viewer, KeySInAnEarlierRunsFolderRemovesThatRunsJournal) {
     const std::string name = fmt::format("honey-drop.{:04}.sim", f);
     EXPECT_EQ(readFile(out / name), readFile(tmp / "clean" / name)) << name;
   }
+}
+
+// S into a folder that a run is writing (its lock held: here by the test) is refused
+// with the holder's name, and writes nothing there.
+TEST(Viewer, KeySIntoAFolderARunIsWritingIsRefused) {
+  SKIP_WITHOUT_XVFB();
+  TempDir tmp;
+  const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
+  const fs::path out = tmp / "honey-dropSim";
+  const cache::FolderLock held(out);
+  const fs::path script = tmp / "s.txt";
+  writeText(script, "frames 2\nkey S\nquit\n");
+  const RunResult r = view(scene, script, tmp.path());
+  EXPECT_NE(r.code, 0) << r.err << r.out;
+  EXPECT_NE((r.err + r.out).find("is being written by another softsub run (pid "), std::string::npos)
+      << r.err << r.out;
+  EXPECT_FALSE(fs::exists(out / "honey-drop.0000.sim"));
 }
 
 TEST(Viewer, AScriptTweaksAParameterStepsSavesAndTakesAScreenshot) {
