@@ -912,6 +912,26 @@ TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
   EXPECT_GE(checked, 1);
 }
 
+// The LJ liquid's lattice: `cells`^3 fcc cells at reduced density 0.8442 (LAMMPS's
+// bench/in.lj), each atom moved by up to +-0.02 sigma (the random cloud of `seed`).
+ParticleStore fccLiquid(int cells, std::uint64_t seed) {
+  const float a = std::cbrt(4.0f / 0.8442f);  // the fcc cell
+  ParticleStore s;
+  const ParticleStore jitter =
+      scenarios::randomCloud(static_cast<std::size_t>(cells * cells * cells * 4), -0.02f, 0.02f, 0, 1, seed);
+  const float basis[4][3] = {{0, 0, 0}, {0.5f, 0.5f, 0}, {0.5f, 0, 0.5f}, {0, 0.5f, 0.5f}};
+  std::size_t q = 0;
+  for (int z = 0; z < cells; ++z)
+    for (int y = 0; y < cells; ++y)
+      for (int x = 0; x < cells; ++x)
+        for (const auto& b : basis) {
+          s.add(a * (static_cast<float>(x) + b[0]) + jitter.px[q], a * (static_cast<float>(y) + b[1]) + jitter.py[q],
+                a * (static_cast<float>(z) + b[2]) + jitter.pz[q], 0, 0, 0, 0, 0);
+          ++q;
+        }
+  return s;
+}
+
 // The LJ liquid's packed list (fcc at reduced density 0.8442, cutoff 2.5, 13,500
 // atoms, layers of over 300 groups): 2 bytes a window, fewer windows than aligned
 // groups, a jump and an end code a slot and an eighth of spare capacity at most: under
@@ -919,19 +939,7 @@ TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
 // budget for a whole simulation is 100).
 TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
   const forces::InteractionTable table = ljTable(1.0, 2.5);
-  const float a = std::cbrt(4.0f / 0.8442f);  // the fcc cell
-  ParticleStore s;
-  const ParticleStore jitter = scenarios::randomCloud(15 * 15 * 15 * 4, -0.02f, 0.02f, 0, 1, 51);
-  const float basis[4][3] = {{0, 0, 0}, {0.5f, 0.5f, 0}, {0.5f, 0, 0.5f}, {0, 0.5f, 0.5f}};
-  std::size_t q = 0;
-  for (int z = 0; z < 15; ++z)
-    for (int y = 0; y < 15; ++y)
-      for (int x = 0; x < 15; ++x)
-        for (const auto& b : basis) {
-          s.add(a * (static_cast<float>(x) + b[0]) + jitter.px[q], a * (static_cast<float>(y) + b[1]) + jitter.py[q],
-                a * (static_cast<float>(z) + b[2]) + jitter.pz[q], 0, 0, 0, 0, 0);
-          ++q;
-        }
+  ParticleStore s = fccLiquid(15, 51);
   const float skin = 0.25f;
   neighbors::CellGrid grid;
   grid.rebuild(s, 2.5f + skin);
@@ -987,20 +995,7 @@ TEST(ClosedForm, PackedListOfTheLjLiquidTakesTwoBytesAWindow) {
 TEST(ClosedForm, OuterWindowsAreEvaluatedOnceTheirPartnersComeWithinTheCutoff) {
   const RestoreSimd restore;
   const forces::InteractionTable table = ljTable(1.0, 2.0);
-  const float a = std::cbrt(4.0f / 0.8442f);
-  ParticleStore s;
-  const ParticleStore jitter = scenarios::randomCloud(12 * 12 * 12 * 4, -0.02f, 0.02f, 0, 1, 53);
-  const float basis[4][3] = {{0, 0, 0}, {0.5f, 0.5f, 0}, {0.5f, 0, 0.5f}, {0, 0.5f, 0.5f}};
-  std::size_t q = 0;
-  for (int z = 0; z < 12; ++z)
-    for (int y = 0; y < 12; ++y)
-      for (int x = 0; x < 12; ++x)
-        for (const auto& b : basis) {
-          s.add(a * (static_cast<float>(x) + b[0]) + jitter.px[q],
-                a * (static_cast<float>(y) + b[1]) + jitter.py[q],
-                a * (static_cast<float>(z) + b[2]) + jitter.pz[q], 0, 0, 0, 0, 0);
-          ++q;
-        }
+  ParticleStore s = fccLiquid(12, 53);
   const float skin = 0.3f, cut2 = 4.0f;
   neighbors::CellGrid grid;
   grid.rebuild(s, 2.0f + skin);
