@@ -110,15 +110,14 @@ class PairList {
   /// entries with row starts), which keeps the whole simulation under 100 bytes a particle.
   /// Outer windows: a window none of whose partners lay within the cutoff when the list
   /// was built (only the skin's shell: a fifth to a third of the Lennard-Jones liquid's
-  /// windows) is kept apart, in slot order: w - slot - 1 in `outer` (16 bits: a narrow
-  /// layer's span) and its lanes 1 to 7 in `outerLanes`, the count of each slot's in
-  /// its end code. The kernel tests such a window's distances first and evaluates it
-  /// only when a partner has come within the cutoff (about one test in fifty in the
-  /// liquid: a branch the predictor knows), in a pass of its own after the layer's
-  /// windows, so that no slot's loop gets a second, unpredictable exit. The same pairs,
-  /// a byte more a window; only the order of the sums changes.
-  /// Wide grouped layers keep one 32-bit entry g << 8 | lanes per aligned group, with
-  /// `start`, and the kernel adds their forces straight to the store.
+  /// windows) and starts after its slot (not across the grid's wrap) is kept apart, in
+  /// slot order: w - slot - 1 in `outer` (16 bits: a narrow layer's span) and its lanes 1 to 7 in
+  /// `outerLanes`, the count of each slot's in its end code. The kernel tests such a window's distances first
+  /// and evaluates it only when a partner has come within the cutoff (about one test in fifty in the liquid:
+  /// a branch the predictor knows), in a pass of its own after the layer's windows, so that no slot's loop
+  /// gets a second, unpredictable exit. The same pairs, a byte more a window; only the order of the sums
+  /// changes. Wide grouped layers keep one 32-bit entry g << 8 | lanes per aligned group, with `start`, and
+  /// the kernel adds their forces straight to the store.
   struct Layer {
     neighbors::SlotRange slots;
     std::vector<std::uint32_t> start;

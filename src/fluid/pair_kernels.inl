@@ -279,7 +279,7 @@ template <bool kInner = false>
 // build: 4.2-4.3 ms against 3.2 for aligned groups; keeping the waiting partners in a
 // 64-bit mask and writing windows in a loop took 4.8). A window is written when the
 // next one starts (or the slot ends): to `outer` when none of its partners is closer
-// than the inner distance, else to `out`. Entries come in ascending order but where a forward cell lies across the
+// than the inner distance and it starts after slot i, else to `out`. Entries come in ascending order but where a forward cell lies across the
 // grid's wrap; a window then starts behind the last one, after jump codes: still each
 // pair in exactly one window.
 struct PackedCounts {
@@ -298,7 +298,9 @@ inline PackedCounts packWindows(std::uint32_t i, std::uint32_t lo, const std::ui
   std::uint32_t wg = UINT32_MAX - 1, off = 0, w = 0, lanes = 0;
   bool inner = false;
   const auto write = [&] {
-    if (!inner && outers < Layer::kOuterMost) {  // w - i - 1 < 65,536: a narrow layer's span
+    // Only a window ahead of its slot: one behind it (across the grid's wrap) has no
+    // 16-bit offset from it. Ahead, w - i - 1 < 65,536 (a narrow layer's span).
+    if (!inner && w > i && outers < Layer::kOuterMost) {
       outer[outers] = static_cast<std::uint16_t>(w - (i + 1));
       outerLanes[outers++] = static_cast<std::uint8_t>((lanes & 255u) >> 1);
       return;

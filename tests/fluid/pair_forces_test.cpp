@@ -912,6 +912,43 @@ TEST(ClosedForm, PackedListsStepBackAcrossTheGridsWrap) {
   EXPECT_GE(checked, 1);
 }
 
+// A pair in the skin's shell (beyond the cutoff, within the list) across the grid's wrap:
+// its window starts behind its slot, so it stays in the slot's codes (as an outer
+// window it had a wrapped 16-bit offset: a partner 65,544 in a store of 290, a pair
+// missing and a crash, found by a code review). The plain list's pairs and the
+// reference's forces, in both copies.
+TEST(ClosedForm, AWindowBehindItsSlotAcrossTheWrapIsNeverOuter) {
+  const RestoreSimd restore;
+  const forces::InteractionTable table = ljTable(0.8, 2.0);
+  const float skin = 0.3f, cell = 2.3f;
+  ParticleStore s;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 12; ++x)
+        s.add(0.5f + 1.15f * static_cast<float>(x) + 0.01f * static_cast<float>((x * 7 + y * 3 + z) % 5),
+              0.5f + 1.15f * static_cast<float>(y), 0.5f + 1.15f * static_cast<float>(z), 0, 0, 0, 0, 0);
+  // P in the grid's last cell along x, Q in its first (2^21 cells on): 2.09 apart.
+  s.add(4823449.0f, 0.1f, 0.1f, 0, 0, 0, 0, 0);
+  s.add(4823450.0f, 1.4f, 1.4f, 0, 0, 0, 0, 0);
+  int checked = 0;
+  for (const Simd simd : {Simd::Baseline, Simd::Avx2}) {
+    if (!useSimd(simd)) continue;
+    ParticleStore t = s;
+    const PairList packed = expectPackedListsThePlainPairs(table, t, cell, skin);
+    std::size_t p = 0;
+    while (p < t.size() && t.px[p] != 4823449.0f) ++p;
+    ASSERT_LT(p, t.size());
+    std::size_t far = 0;
+    packed.forEachPair([&](std::uint32_t i, std::uint32_t j) {
+      ASSERT_LT(j, t.size());
+      far += (i == p || j == p) ? 1 : 0;
+    });
+    EXPECT_EQ(far, 1u) << "P's one pair, with Q";
+    ++checked;
+  }
+  EXPECT_GE(checked, 1);
+}
+
 // The LJ liquid's lattice: `cells`^3 fcc cells at reduced density 0.8442 (LAMMPS's
 // bench/in.lj), each atom moved by up to +-0.02 sigma (the random cloud of `seed`).
 ParticleStore fccLiquid(int cells, std::uint64_t seed) {
