@@ -52,6 +52,11 @@ int meshCommand(const MeshOptions& o) {
   if (formats.sim || formats.pdc || formats.ply || !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--formats"},
                      fmt::format("'{}' is not a surface format list", o.formats), kSurfaceFormats);
+  // One writer at a time in the folder (a run still writing it, or a second mesh): the
+  // lock first, then the folder's frames as they are under it.
+  const cache::FolderLock lock(session::Playback(o.folder, o.scene).folder(), "mesh",
+                               InputLocation{"command line", 0, "SIMDIR"},
+                               "wait for it to end: a folder being written has frames still to come");
   const session::Playback playback(o.folder, o.scene);
   const FrameSnapshot first = playback.load(0);
   checkSurfaceOptions(o.surface, first, o.folder, o.quiet);
@@ -64,8 +69,6 @@ int meshCommand(const MeshOptions& o) {
                            "mesh a folder of one scene, or run the scenes into folders of their own");
   }
   const surface::SurfaceSettings& settings = o.surface;
-  // One writer at a time in the folder: a run still writing it, or a second mesh.
-  const cache::FolderLock lock(playback.folder());
   surface::SurfaceWriter writer(playback.folder(), formats.mesh, formats.vdb, settings);
 
   const bool chatty = stderrIsTerminal() && !o.quiet;

@@ -340,6 +340,8 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("is for a recorded folder: {} is a scene",
                                    o.input.empty() ? "the default scene" : o.input),
                        "give the scene as INPUT, or leave --scene out");
+    TerminalNote reading(chatty,
+                         fmt::format("reading {} ...", o.input.empty() ? "the default scene" : o.input));
     LoadedScene loaded = loadScene(o.input, o.maxParticles);
     if (o.substeps) loaded.desc.simulation.substeps = static_cast<int>(*o.substeps);
     sceneName = loaded.name;
@@ -352,10 +354,11 @@ int renderCommand(const RenderOptions& o) {
                        fmt::format("frame {} is past the scene's last frame {}", range.first,
                                    loaded.desc.simulation.frames),
                        fmt::format("frames in [0, {}]", loaded.desc.simulation.frames));
-    if (range.last && *range.last > loaded.desc.simulation.frames && chatty)
-      fmt::print(stderr, "note: --frames reaches frame {}; the scene ends at frame {}, the last drawn\n", *range.last,
-                 loaded.desc.simulation.frames);
     scene::Compiled compiled = scene::compile(loaded.desc);
+    reading.clear();  // before anything is printed
+    if (range.last && *range.last > loaded.desc.simulation.frames && chatty)
+      fmt::print(stderr, "note: --frames reaches frame {}; the scene ends at frame {}, the last drawn\n",
+                 *range.last, loaded.desc.simulation.frames);
     if (!o.quiet)  // warnings, unlike notes, also for a pipe or a log (as run's)
       for (const std::string& w : compiled.warnings)
         fmt::print(stderr, "warning: {}: {}\n", displayFile(loaded.file), w);

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -302,12 +304,12 @@ int runCommand(const RunOptions& o) {
   if (surfaceOptionsGiven(o.surface) && !(formats.mesh || formats.vdb))
     throw InputError({"command line", 0, "--voxel-size/--blob-radius"}, "are for surfaces",
                      "add mesh or vdb to --formats, or leave them out");
+  reading.clear();  // before anything else is printed
   if (formats.mesh || formats.vdb) checkSurfaceOptions(o.surface, sim.snapshot(), sceneFile, o.quiet);
   // Progress, notes and the summary are for a person at a terminal; a pipe, a file or a
   // farm log gets errors and warnings only (a warning is about this run's result: a farm
   // log must show it too). --quiet leaves errors alone.
   const bool chatty = stderrIsTerminal() && !o.quiet;
-  reading.clear();
   if (!o.quiet) {
     for (const std::string& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
     for (const std::string& w : compiled.warnings) fmt::print(stderr, "warning: {}: {}\n", shownFile, w);
@@ -353,7 +355,16 @@ int runCommand(const RunOptions& o) {
   // files under it (a review: the first run then failed as if the disk had, or ended
   // with success over files that were no longer its own).
   std::optional<cache::FolderLock> lock;
-  if (anyFormat(formats)) lock.emplace(outDir);
+  if (anyFormat(formats)) {
+    lock.emplace(outDir, "run", InputLocation{"command line", 0, "--out"},
+                 "wait for it to end, or write into another folder (--out)");
+    // Checked again now that no other writer can change the folder (a run of another
+    // scene may have written it since the checks before the scene was compiled).
+    checkInputsKept(loaded, formats, outDir);
+    std::vector<std::string> fluidNames;
+    for (const scene::FluidDesc& f : loaded.desc.fluids) fluidNames.push_back(f.name);
+    refuseOtherScenesFiles(outDir, loaded.name, formats, fluidNames);
+  }
   if (anyFormat(formats)) {
     if (o.resume) {
       resumed = resumeFrom(outDir, loaded.name, fingerprint, sim);
@@ -411,7 +422,9 @@ int runCommand(const RunOptions& o) {
   std::optional<StatsObserver> stats;
   if (o.stats) observers.push_back(&stats.emplace(sim));
 
-  ProgressLine progress(chatty, lastFrame, particles);
+  // --stats lines on a terminal's stdout would land inside the progress line: one or
+  // the other there.
+  ProgressLine progress(chatty && !(o.stats && ::isatty(::fileno(stdout)) == 1), lastFrame, particles);
   solver::FrameLoopHooks hooks;
   hooks.stop = &stop;
   hooks.recordUpTo = o.stopRecordingAt;
@@ -464,9 +477,10 @@ int runCommand(const RunOptions& o) {
                           "Viscosity) or slow the motion"));
   };
   hooks.onProgress = [&](const solver::FrameProgress& p) {
+    progress.update(p);
+    if (p.initial) return;  // frame 0: written, no substep taken
     fewestSubsteps = std::min(fewestSubsteps, sim.substeps());
     mostSubsteps = std::max(mostSubsteps, sim.substeps());
-    progress.update(p);
     warnIfFast(p.frame);
     warnIfCapped(p.frame);
   };
@@ -504,9 +518,16 @@ int runCommand(const RunOptions& o) {
       // The folder once the picture can be drawn: with --formats none it holds nothing
       // else, and a system that cannot draw leaves no empty folder.
       PictureMaker maker(*view, kPreviewWidth, kPreviewHeight);
+      // With --formats none this run holds no lock yet: not into a folder another one writes.
+      std::optional<cache::FolderLock> previewLock;
+      if (!lock)
+        previewLock.emplace(outDir, "run", InputLocation{"command line", 0, "--out"},
+                            "wait for it to end, or write into another folder (--out)");
       cache::ensureDirectory(outDir);
       maker.write(picture, sim.snapshot(), cameraOf(loaded.desc.camera));
       previewNote = ", preview: " + picture.string();
+    } catch (const InputError& e) {  // the folder is being written by another process
+      fmt::print(stderr, "warning: no preview picture: {}\n", e.what());
     } catch (const IoError& e) {
       fmt::print(stderr, "warning: no preview picture: {}\n", e.what());
       // One an earlier run (or this one, before a resume) drew would pass for this run's.
@@ -516,12 +537,15 @@ int runCommand(const RunOptions& o) {
   }
   if (chatty && o.adaptive && mostSubsteps > 0)
     fmt::print(stderr, "adaptive substeps: {}..{} per frame\n", fewestSubsteps, mostSubsteps);
-  if (chatty)
-    fmt::print(stderr, "done: {}, {}, {:.2f} s ({:.1f} ms/frame), output: {}{}\n",
-               countOf(static_cast<std::uint64_t>(progress.framesDone()), "frame"),
-               countOf(particles, "particle"), seconds,
-               seconds / static_cast<double>(std::max<std::int64_t>(progress.framesDone(), 1)) * 1e3, where,
-               previewNote);
+  if (chatty) {
+    // The total over the frames simulated, frame 0's writing included; none: no rate.
+    const std::int64_t frames = progress.framesDone();
+    fmt::print(stderr, "done: {}, {}, {:.2f} s{}, output: {}{}\n",
+               countOf(static_cast<std::uint64_t>(frames), "frame"), countOf(particles, "particle"), seconds,
+               frames > 0 ? fmt::format(" ({:.1f} ms/frame)", seconds / static_cast<double>(frames) * 1e3)
+                          : std::string(),
+               where, previewNote);
+  }
   return static_cast<int>(ExitCode::Ok);
 }
 

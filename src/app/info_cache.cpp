@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "cache/atomic_file.h"
+#include "cache/folder_lock.h"
 #include "cache/manifest.h"
 #include "cache/naming.h"
 #include "cache/pdc_format.h"
@@ -128,6 +129,10 @@ void printCheckpointInfo(const std::string& path) {
 
 void printRunFolderInfo(const std::string& dirText) {
   const std::filesystem::path dir(dirText);
+  // A run (or mesh, or the viewer's S) writing the folder now: what follows is a moment
+  // of it, and --resume would be refused until it ends.
+  const std::optional<std::string> writer = cache::FolderLock::holder(dir);
+  if (writer) fmt::print("{}: being written now by {}\n", dirText, *writer);
   const std::vector<std::string> names = cache::manifestSceneNames(dir);
   if (names.empty()) {
     // Frames without manifests (the viewer's S writes none; an older softsub's run): what
@@ -206,8 +211,8 @@ void printRunFolderInfo(const std::string& dirText) {
         fmt::print("  {}\n", e.what());
       }
     }
-    if (resumeAt >= 0)
-      fmt::print("  run --resume would continue after frame {}\n", resumeAt);
+    if (writer) fmt::print("  run --resume would be refused while the folder is being written\n");
+    else if (resumeAt >= 0) fmt::print("  run --resume would continue after frame {}\n", resumeAt);
     else
       fmt::print("  run --resume would start over at frame 0\n");
   }

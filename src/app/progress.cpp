@@ -38,8 +38,9 @@ double ProgressLine::secondsPerFrame() const {
 
 void ProgressLine::begin(std::int64_t frame, const std::string& what) {
   if (!enabled_) return;
-  std::string line =
-      fmt::format("frame {}/{} | {} | {}", frame, last_, countOf(particles_, "particle"), what);
+  const std::string where = items_ > 0 ? fmt::format("frame {}/{} (0 of {})", frame, last_, items_)
+                                       : fmt::format("frame {}/{}", frame, last_);
+  std::string line = fmt::format("{} | {} | {}", where, countOf(particles_, "particle"), what);
   width_ = line.size();
   fmt::print(stderr, "\r{}", line);
   std::fflush(stderr);
@@ -48,7 +49,16 @@ void ProgressLine::begin(std::int64_t frame, const std::string& what) {
 }
 
 void ProgressLine::update(const solver::FrameProgress& p) {
-  if (!p.initial) ++done_;
+  if (p.initial) {
+    // Frame 0, written before any stepping: its own line, and not in the rate (with
+    // surfaces it costs a frame's meshing, but no simulation).
+    if (enabled_ && p.frame < last_) {
+      lastDraw_ = std::chrono::steady_clock::now();
+      draw(p.frame);
+    }
+    return;
+  }
+  ++done_;
   busySeconds_ += p.stepSeconds + p.writeSeconds;
   if (!enabled_) return;
   // Redraw at most ten times a second, and always for frame 0, the first frame simulated
@@ -66,9 +76,9 @@ void ProgressLine::draw(std::int64_t frame) {
                                  : static_cast<double>(last_ - frame);
   const std::string where = items_ > 0 ? fmt::format("frame {}/{} ({} of {})", frame, last_, done_, items_)
                                        : fmt::format("frame {}/{}", frame, last_);
-  // Frame 0 alone (written, nothing simulated yet): no rate to give.
+  // Frame 0 alone (nothing simulated yet): no rate to give.
   std::string line =
-      done_ == 0 ? fmt::format("{} | {} | written, simulating", where, countOf(particles_, "particle"))
+      done_ == 0 ? fmt::format("{} | {} | simulating", where, countOf(particles_, "particle"))
                  : fmt::format("{} | {} | {:.1f} ms/frame | ETA {}", where, countOf(particles_, "particle"),
                                secondsPerFrame() * 1e3, clockTime(left * secondsPerFrame()));
   const std::size_t len = line.size();

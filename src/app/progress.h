@@ -25,13 +25,14 @@ class ProgressLine {
   /// Before the first frame: `frame F/LAST | N particles | <what>` (a run's frame 0 can
   /// take long: a million particles' surfaces, a large mesh).
   void begin(std::int64_t frame, const std::string& what);
-  /// After each completed frame (the frame loop's onProgress hook); frame 0 written
-  /// before any stepping (FrameProgress::initial) counts in the time, not in the frames.
+  /// After each completed frame (the frame loop's onProgress hook); frame 0 handed out
+  /// before any stepping (FrameProgress::initial) is drawn, and counts neither in the
+  /// frames nor in the rate.
   void update(const solver::FrameProgress& p);
   /// Ends the line with a newline (before a summary or an error message).
   void end();
-  /// Wall seconds (simulation plus writing, frame 0's included) per frame simulated so
-  /// far, or per item with a count of items; 0 before the first.
+  /// Wall seconds (simulation plus writing) per frame simulated so far, or per item with
+  /// a count of items; 0 before the first.
   [[nodiscard]] double secondsPerFrame() const;
   /// Frames simulated since the start (items with a count of items).
   [[nodiscard]] std::int64_t framesDone() const { return done_; }

@@ -258,7 +258,8 @@ void Viewer::writeCaches() {
     // Not while a run writes the folder (cache::FolderLock, as `run` and `mesh` take it).
     std::optional<cache::FolderLock> lock;
     if (session_->recordedFrames() > 0) {
-      lock.emplace(session_->outputDir());
+      lock.emplace(session_->outputDir(), "view", InputLocation{"viewer", 0, "S"},
+                   "wait for it to end, or start the viewer with another --out");
       forgetEarlierRun(session_->outputDir(), session_->sceneName(), inputFiles_);
     }
     const auto written = session_->writeRecorded();

@@ -431,13 +431,21 @@ TEST(Resume, ASecondRunIntoAFolderBeingWrittenIsRefused) {
   const RunResult second =
       runSoftsub("run " + scenePath("softsub-demo.scene") + " --frames 3 --out " + quote(out), tmp.path());
   EXPECT_EQ(second.code, 2) << second.err;
-  EXPECT_NE(
-      second.err.find("is being written by another softsub run (pid " + std::to_string(pid) + " on host "),
-      std::string::npos)
+  EXPECT_NE(second.err.find("is being written by another softsub process (softsub run, pid " +
+                            std::to_string(pid) + " on host "),
+            std::string::npos)
       << second.err;
+  // It wrote nothing: its formats (sim, pdc, ply) would have made pdc/ and ply/.
+  EXPECT_FALSE(fs::exists(out / "pdc"));
+  EXPECT_FALSE(fs::exists(out / "ply"));
   const RunResult mesh = runSoftsub("mesh " + quote(out), tmp.path());
   EXPECT_EQ(mesh.code, 2) << mesh.err;
+  EXPECT_NE(mesh.err.find("SIMDIR: '"), std::string::npos) << mesh.err;
   EXPECT_FALSE(fs::exists(out / "mesh"));
+  // info names the writer.
+  const RunResult info = runSoftsub("info " + quote(out), tmp.path());
+  EXPECT_NE(info.out.find("being written now by softsub run, pid " + std::to_string(pid)), std::string::npos)
+      << info.out;
   // The first run is still going and still has its frame 0.
   EXPECT_TRUE(fs::exists(out / "softsub-demo.0000.sim"));
   ::kill(pid, SIGINT);

@@ -164,12 +164,13 @@ TEST(Viewer, KeySIntoAFolderARunIsWritingIsRefused) {
   TempDir tmp;
   const fs::path scene = copyInto(examplesDir() / "honey-drop.scene", tmp.path());
   const fs::path out = tmp / "honey-dropSim";
-  const cache::FolderLock held(out);
+  const cache::FolderLock held(out, "run", {"test", 0, "lock"}, "");
   const fs::path script = tmp / "s.txt";
   writeText(script, "frames 2\nkey S\nquit\n");
   const RunResult r = view(scene, script, tmp.path());
   EXPECT_NE(r.code, 0) << r.err << r.out;
-  EXPECT_NE((r.err + r.out).find("is being written by another softsub run (pid "), std::string::npos)
+  EXPECT_NE((r.err + r.out).find("is being written by another softsub process (softsub run, pid "),
+            std::string::npos)
       << r.err << r.out;
   EXPECT_FALSE(fs::exists(out / "honey-drop.0000.sim"));
 }
