@@ -498,7 +498,9 @@ TEST(FrameLoop, ObserversSeeFrameZeroThenEveryFrameAndStopEarly) {
     EXPECT_EQ(p.lastFrame, 3);
     EXPECT_EQ(p.initial, p.frame == 0);
     EXPECT_GE(p.stepSeconds, 0);
-    if (p.initial) EXPECT_EQ(p.stepSeconds, 0);
+    if (p.initial) {
+      EXPECT_EQ(p.stepSeconds, 0);
+    }
   };
   EXPECT_TRUE(runFrames(sim, 3, obs, hooks));
   EXPECT_EQ(rec.frames, (std::vector<std::int64_t>{0, 1, 2, 3}));
