@@ -311,83 +311,129 @@ std::vector<std::string> ownFunctionWarnings(const SceneDesc& d) {
 
 }  // namespace
 
-std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near) {
+double cubicVirial(const forces::PairFunction& f, double a) {
   const double cut = forces::cutoff(f);
-  if (!(cut > 0) || !(near > 0)) return std::nullopt;
-  // The lattice's shells: |n|^2 of every n in Z^3 with n != 0 and |n| below 4, with their
-  // multiplicities; spacings are searched from a quarter of the cutoff up.
-  constexpr int kReach = 4;
-  std::array<int, kReach * kReach + 1> count{};
-  for (int x = -kReach; x <= kReach; ++x)
-    for (int y = -kReach; y <= kReach; ++y)
-      for (int z = -kReach; z <= kReach; ++z) {
-        const int n2 = x * x + y * y + z * z;
-        if (n2 > 0 && n2 <= kReach * kReach) ++count[static_cast<std::size_t>(n2)];
-      }
-  // The push on a particle's neighbours summed as the virial: sum of r F(r) over them.
-  // Positive: the lattice pushes itself apart (it swells); negative: it pulls together.
-  const auto virial = [&](double a) {
-    double w = 0;
-    for (std::size_t n2 = 1; n2 < count.size(); ++n2) {
-      const double r = a * std::sqrt(static_cast<double>(n2));
-      if (count[n2] == 0 || r >= cut) continue;
-      w += count[n2] * r * forces::evaluate(f, r);
-    }
-    return w;
-  };
-  constexpr int kSteps = 200;  // roots closer than 0.4% of the cutoff are not told apart
-  const double lo = cut / kReach, step = (cut - lo) / kSteps;
-  std::optional<double> best;
-  double previous = virial(lo);
+  if (!(a > 0) || !(cut > 0)) return 0;
+  // How many n in Z^3 have |n|^2 = k, for k up to 64^2 (neighbours out to 64 spacings:
+  // a lattice finer than a 64th of the cutoff is counted to there only).
+  constexpr int kMost = 64;
+  static const std::vector<int> shells = [] {
+    std::vector<int> count(kMost * kMost + 1, 0);
+    for (int x = -kMost; x <= kMost; ++x)
+      for (int y = -kMost; y <= kMost; ++y)
+        for (int z = -kMost; z <= kMost; ++z) {
+          const int k = x * x + y * y + z * z;
+          if (k <= kMost * kMost) ++count[static_cast<std::size_t>(k)];
+        }
+    return count;
+  }();
+  const double most = std::min(cut / a, static_cast<double>(kMost));
+  const auto last = static_cast<std::size_t>(std::floor(most * most));
+  double w = 0;
+  for (std::size_t k = 1; k <= last; ++k) {
+    const double r = a * std::sqrt(static_cast<double>(k));
+    if (r >= cut) break;
+    if (shells[k] > 0) w += shells[k] * r * forces::evaluate(f, r);
+  }
+  return w;
+}
+
+std::vector<double> cubicRests(const forces::PairFunction& f, double from) {
+  std::vector<double> rests;
+  const double cut = forces::cutoff(f);
+  if (!(cut > 0) || !(from > 0) || from >= cut) return rests;
+  constexpr int kSteps = 200;  // rests closer than half a percent of the range are not told apart
+  const double step = (cut - from) / kSteps;
+  double previous = cubicVirial(f, from);
   for (int k = 1; k <= kSteps; ++k) {
-    const double a = lo + k * step, w = virial(a);
-    if (previous > 0 && w < 0) {  // pushes apart below, pulls together above: a rest
+    const double a = from + k * step, w = cubicVirial(f, a);
+    // Pushes apart below, no longer above (pulls, or no force: a fluid without
+    // attraction swells until its particles stop pushing): a rest.
+    if (previous > 0 && w <= 0) {
       double below = a - step, above = a;
-      for (int i = 0; i < 50; ++i) {
+      for (int i = 0; i < 40; ++i) {
         const double mid = 0.5 * (below + above);
-        (virial(mid) > 0 ? below : above) = mid;
+        (cubicVirial(f, mid) > 0 ? below : above) = mid;
       }
-      const double root = 0.5 * (below + above);
-      if (!best || std::abs(std::log(root / near)) < std::abs(std::log(*best / near))) best = root;
+      rests.push_back(above);
     }
     previous = w;
   }
-  return best;
+  return rests;
+}
+
+std::optional<double> cubicRestFrom(const std::vector<double>& rests, const forces::PairFunction& f,
+                                    double near) {
+  const double w = cubicVirial(f, near);
+  if (w > 0)  // pushed apart: to the first rest above
+    for (const double r : rests)
+      if (r > near) return r;
+  if (w < 0)  // pulled together: to the last rest below
+    for (auto r = rests.rbegin(); r != rests.rend(); ++r)
+      if (*r < near) return *r;
+  return std::nullopt;
+}
+
+std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near) {
+  const double cut = forces::cutoff(f);
+  if (!(cut > 0) || !(near > 0) || near >= cut) return std::nullopt;  // no neighbour in reach
+  return cubicRestFrom(cubicRests(f, std::min(cut / 4, near / 2)), f, near);
 }
 
 namespace {
 
 // A fill far from the spacing its fluid rests at changes its volume in the first
-// frames: the jelly example's cube (Spacing 1.12, rest about 0.96) lost 41% of its volume
-// in mid-air in 4 frames, and a mud layer at 0.8 (rest about 0.98) swelled by 63%
+// frames: the jelly example's cube (Spacing 1.12, rest about 0.945) lost 41% of its
+// volume in mid-air in 4 frames, and a mud layer at 0.8 (rest about 0.97) swelled by 63%
 // (a black-box review). Warned per fill, from the fluid's own function (or the Pair
 // that replaces it), when the volume would change by more than 35%: the examples' fills
-// at 1.1 of fluids that rest at 0.97-0.98 (about 30%, much of it hidden by their splash
-// or slowed by their viscosity) stay quiet.
+// at 1.1 of fluids that rest at 0.96-0.98 (about 30%, much of it hidden by their splash
+// or slowed by their viscosity) stay quiet. The rests are found once a fluid.
 std::vector<std::string> fillSpacingWarnings(const SceneDesc& d) {
   std::vector<std::string> out;
   for (const FluidDesc& f : d.fluids) {
+    if (f.fills.empty()) continue;
     forces::PairFunction own = fluid::ownFunction(f.params);
+    const PairDesc* self = nullptr;
     for (const PairDesc& p : d.interactions.pairs)
-      if (p.a == f.name && p.b == f.name) own = p.interaction.function;
+      if (p.a == f.name && p.b == f.name) self = &p;
+    if (self != nullptr) own = self->interaction.function;
+    const double cut = forces::cutoff(own);
+    double from = cut / 4;
+    for (const FillDesc& fill : f.fills) from = std::min(from, fill.spacing / 2);
+    const std::vector<double> rests = cubicRests(own, from);
+    const std::string force = self != nullptr ? fmt::format("its own <Pair> (line {})", self->line)
+                                              : std::string("this fluid's own force");
+    const std::string distances = self != nullptr ? std::string("that <Pair>'s distances")
+                                                  : std::string("FiniteDistance and InteractionDistance");
     for (const FillDesc& fill : f.fills) {
-      if (fill.surface) continue;  // a shell one particle thick rests as it can
-      const std::optional<double> rest = cubicRestSpacing(own, fill.spacing);
-      if (!rest) continue;
+      if (fill.surface || !(fill.spacing < cut)) continue;  // a shell; particles out of each other's reach
+      const std::optional<double> rest = cubicRestFrom(rests, own, fill.spacing);
+      if (!rest) {
+        if (cubicVirial(own, fill.spacing) < 0 && rests.empty())
+          out.push_back(
+              fmt::format("Fluid '{}': the fill at line {} has Spacing {:g}, and {} only pulls such a "
+                          "lattice together: it "
+                          "collapses until its particles overlap; give the function a push at short range",
+                          f.name, fill.line, fill.spacing, force));
+        continue;
+      }
       const double ratio = *rest / fill.spacing, volume = ratio * ratio * ratio;
       if (volume > 0.65 && volume < 1.35) continue;
       const std::string change =
           volume < 1e-3  ? std::string("shrinks to under a thousandth of its volume")
-          : volume > 1e3 ? std::string("swells to over a thousand times its volume")
+          : volume > 1e3 ? std::string("swells to over a thousand times its volume (it bursts apart)")
           : volume < 0.5 ? fmt::format("shrinks to about {:.2g} of its volume", volume)
           : volume < 1   ? fmt::format("shrinks by about {:.0f}% in volume", (1 - volume) * 100)
           : volume <= 2  ? fmt::format("swells by about {:.0f}% in volume", (volume - 1) * 100)
-                         : fmt::format("swells to about {:.3g} times its volume", volume);
-      out.push_back(fmt::format(
-          "Fluid '{}': the fill at line {} has Spacing {:g}, but this fluid's own force holds such a "
-          "lattice at rest about {:.3g} apart, so it {} in its first frames; fill at Spacing {:.3g}, or "
-          "scale FiniteDistance and InteractionDistance by {:.3g} (the rest spacing follows them)",
-          f.name, fill.line, fill.spacing, *rest, change, *rest, 1 / ratio));
+                         : fmt::format("swells to about {:.3g} times its volume (it bursts apart)", volume);
+      out.push_back(
+          fmt::format("Fluid '{}': the fill at line {} has Spacing {:g}, but {} holds such a lattice at rest "
+                      "about {:.3g} apart, "
+                      "so it {} in its first frames; fill at Spacing {:.3g}, or scale {} by {:.3g} (the rest "
+                      "spacing follows "
+                      "them)",
+                      f.name, fill.line, fill.spacing, force, *rest, change, *rest, distances, 1 / ratio));
     }
   }
   return out;

@@ -34,11 +34,22 @@ struct Compiled {
 /// desc.baseDir / Geometry again (IoError or InputError if it changed since reading).
 Compiled compile(const SceneDesc& desc);
 
-/// The spacing at which a simple cubic lattice (what every fill makes) of particles
-/// interacting through `f` is at rest, gravity aside: where the sum of r F(r) over a
-/// particle's neighbours goes from pushing apart to pulling together as the spacing
-/// grows; of several, the nearest to `near`. None where there is none between a quarter
-/// of f's cutoff and the cutoff (a function that only pushes or only pulls).
+/// The push of a simple cubic lattice (what every fill makes) of spacing `a` whose
+/// particles interact through `f`: the sum of r F(r) over a particle's neighbours within
+/// f's cutoff. Positive: the lattice pushes itself apart; negative: it pulls together.
+double cubicVirial(const forces::PairFunction& f, double a);
+/// The spacings from `from` up to f's cutoff where such a lattice is at rest, gravity
+/// aside, ascending: where cubicVirial goes from pushing apart to not (pulling, or no
+/// force at all: a function without attraction swells to where it stops pushing).
+std::vector<double> cubicRests(const forces::PairFunction& f, double from);
+/// The rest a lattice of spacing `near` settles at, of `rests` (cubicRests): the first
+/// above when it pushes itself apart, the last below when it pulls together; none when
+/// it does neither or has no rest that way.
+std::optional<double> cubicRestFrom(const std::vector<double>& rests, const forces::PairFunction& f,
+                                    double near);
+/// cubicRestFrom for a lattice of spacing `near`, the rests searched from a quarter of
+/// the cutoff or half of `near` if less; none when `near` is at or beyond the cutoff
+/// (its particles out of each other's reach).
 std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near);
 
 /// The solver's integrator for a scene's.

@@ -135,11 +135,17 @@ TEST(CompileWarnings, NamesAFiniteDistanceNotBelowTheInteractionDistance) {
   EXPECT_EQ(ball("<FiniteDistance>1.5</FiniteDistance>", "").size(), 1u);  // equal: no attraction either
   EXPECT_TRUE(
       ball("<FiniteDistance>2</FiniteDistance><InteractionDistance>3</InteractionDistance>", "").empty());
-  EXPECT_TRUE(
+  // A Pair replacing the function: no word of FiniteDistance (the Pair only pushes, so
+  // its fill, 2 apart, is told it swells to its cutoff 3).
+  const std::vector<std::string> paired =
       ball("<FiniteDistance>2</FiniteDistance>",
            "<Interactions><Pair><A>a</A><B>a</B><Linear><AtZero>5</AtZero><Cutoff>3</Cutoff><Min>0</Min>"
-           "<Max>5</Max></Linear></Pair></Interactions>")
-          .empty());
+           "<Max>5</Max></Linear></Pair></Interactions>");
+  ASSERT_EQ(paired.size(), 1u) << fmt::format("{}", fmt::join(paired, "\n"));
+  EXPECT_EQ(paired[0].find("FiniteDistance 2"), std::string::npos) << paired[0];
+  EXPECT_NE(paired[0].find("its own <Pair> (line 2) holds such a lattice at rest about 3 apart"),
+            std::string::npos)
+      << paired[0];
 }
 
 TEST(CompileWarnings, CountsTheParticlesOfEachObjectOutsideTheContainer) {
@@ -628,16 +634,30 @@ namespace {
 // The rest spacing of a cubic fill, against what can be worked out by hand: a force
 // whose cutoff leaves only the 6 nearest neighbours in reach rests where it is zero
 // (the seed's shape: at FiniteDistance); with the next shells in reach their pull puts
-// the rest below it; a force that only pushes has none.
+// the rest below it; a force that only pushes swells the lattice to its cutoff, one
+// that only pulls has no rest; a lattice at rest, or out of reach, goes nowhere.
 TEST(CubicRestSpacing, IsWhereTheNeighboursForcesBalance) {
   // Cutoff 1.3: at spacings near 1 the second shell (1.41) is out of reach.
-  const std::optional<double> nearest = cubicRestSpacing(forces::LennardJones{30, 1, -20, 400, 1.3}, 1.0);
+  const forces::PairFunction nearOnly = forces::LennardJones{30, 1, -20, 400, 1.3};
+  const std::optional<double> nearest = cubicRestSpacing(nearOnly, 0.9);
   ASSERT_TRUE(nearest.has_value());
   EXPECT_NEAR(*nearest, 1.0, 1e-9);
-  // It scales with the distances, whatever the near guess.
-  const std::optional<double> scaled = cubicRestSpacing(forces::LennardJones{30, 0.01, -20, 400, 0.013}, 5.0);
+  EXPECT_NEAR(cubicRestSpacing(nearOnly, 1.05).value_or(0), 1.0, 1e-9);  // from above too
+  EXPECT_FALSE(cubicRestSpacing(nearOnly, 1.0).has_value());             // at rest already
+  EXPECT_FALSE(cubicRestSpacing(nearOnly, 1.3).has_value());             // out of each other's reach
+  // It scales with the distances.
+  const std::optional<double> scaled =
+      cubicRestSpacing(forces::LennardJones{30, 0.01, -20, 400, 0.013}, 0.009);
   ASSERT_TRUE(scaled.has_value());
   EXPECT_NEAR(*scaled, 0.01, 1e-11);
+  // A cutoff 4.5 times FiniteDistance (a review: the search began at a quarter of the
+  // cutoff, above the rest, and found none): still found, below 1.
+  const std::optional<double> wide = cubicRestSpacing(forces::LennardJones{30, 1, -20, 400, 4.5}, 1.1);
+  ASSERT_TRUE(wide.has_value());
+  EXPECT_GT(*wide, 0.8);
+  EXPECT_LT(*wide, 1.0);
+  // No attraction (MinimumForce 0): it swells to where its particles stop pushing, s.
+  EXPECT_NEAR(cubicRestSpacing(forces::LennardJones{30, 1, 0, 400, 1.5}, 0.8).value_or(0), 1.0, 1e-6);
   // The default fluid (cutoff 1.5): 12 second neighbours at 1.35-1.41 pull it in. The
   // sum of r F(r) at the rest is 0 by the formula, computed here on its own.
   const forces::PairFunction seed = forces::LennardJones{30, 1, -20, 400, 1.5};
@@ -651,8 +671,11 @@ TEST(CubicRestSpacing, IsWhereTheNeighboursForcesBalance) {
   };
   EXPECT_GT(virial(*rest - 1e-6), 0);  // the third shell (1.73 a) is beyond 1.5 here
   EXPECT_LT(virial(*rest + 1e-6), 0);
-  // Only pushing: no rest.
-  EXPECT_FALSE(cubicRestSpacing(forces::Linear{5, 1, 0, 5}, 0.5).has_value());
+  // Only pushing: swells to the cutoff. Only pulling: no rest, and the push is negative.
+  EXPECT_NEAR(cubicRestSpacing(forces::Linear{5, 1, 0, 5}, 0.5).value_or(0), 1.0, 1e-6);
+  const forces::PairFunction pull = forces::Linear{-5, 1, -5, 0};
+  EXPECT_FALSE(cubicRestSpacing(pull, 0.5).has_value());
+  EXPECT_LT(cubicVirial(pull, 0.5), 0);
 }
 
 // A fill far from its fluid's rest spacing is named with the volume it will gain or
