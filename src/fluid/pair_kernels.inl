@@ -25,8 +25,10 @@ inline constexpr std::uint32_t kFilterBlock = 8;
 // Bit c set: buffer entry k + c (c < 8) is closer than sqrt(cut2) to (xi, yi, zi). The
 // squared distance is dx * dx + dy * dy + dz * dz in this order and without fused
 // multiply-adds in every form below, so every form keeps the same entries.
-// nearMasks: the same, and bit c + 8 set where the entry is also closer than sqrt(inner2)
-// (the packed list's outer windows: fillPacked).
+// With kInner, bit c + 8 set too where the entry is also closer than sqrt(inner2) (the
+// packed list's outer windows: fillPacked); without, inner2 is not looked at (the plain
+// list's filter pays for no second comparison).
+template <bool kInner>
 inline std::uint32_t nearMasks(const Candidates& b, std::uint32_t k, float xi, float yi, float zi, float cut2,
                                float inner2) {
 #if SOFTSUB_KERNEL_AVX || defined(__AVX__)
@@ -34,7 +36,9 @@ inline std::uint32_t nearMasks(const Candidates& b, std::uint32_t k, float xi, f
   const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(b.y + k), _mm256_set1_ps(yi));
   const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(b.z + k), _mm256_set1_ps(zi));
   const __m256 r2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
-  return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(cut2), _CMP_LT_OQ))) |
+  const auto bits = static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(cut2), _CMP_LT_OQ)));
+  if constexpr (!kInner) return bits;
+  return bits |
          static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(inner2), _CMP_LT_OQ))) << 8;
 #elif defined(__SSE2__)
   std::uint32_t bits = 0;
@@ -44,7 +48,8 @@ inline std::uint32_t nearMasks(const Candidates& b, std::uint32_t k, float xi, f
     const __m128 dz = _mm_sub_ps(_mm_loadu_ps(b.z + k + h), _mm_set1_ps(zi));
     const __m128 r2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
     bits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(r2, _mm_set1_ps(cut2)))) << h;
-    bits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(r2, _mm_set1_ps(inner2)))) << (h + 8);
+    if constexpr (kInner)
+      bits |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_cmplt_ps(r2, _mm_set1_ps(inner2)))) << (h + 8);
   }
   return bits;
 #else
@@ -52,13 +57,14 @@ inline std::uint32_t nearMasks(const Candidates& b, std::uint32_t k, float xi, f
   for (std::uint32_t c = 0; c < 8; ++c) {
     const float dx = b.x[k + c] - xi, dy = b.y[k + c] - yi, dz = b.z[k + c] - zi;
     const float r2 = dx * dx + dy * dy + dz * dz;
-    bits |= (r2 < cut2 ? 1u : 0u) << c | (r2 < inner2 ? 1u : 0u) << (c + 8);
+    bits |= (r2 < cut2 ? 1u : 0u) << c;
+    if constexpr (kInner) bits |= (r2 < inner2 ? 1u : 0u) << (c + 8);
   }
   return bits;
 #endif
 }
 inline std::uint32_t nearMask(const Candidates& b, std::uint32_t k, float xi, float yi, float zi, float cut2) {
-  return nearMasks(b, k, xi, yi, zi, cut2, 0.0f) & 255u;
+  return nearMasks<false>(b, k, xi, yi, zi, cut2, 0.0f);
 }
 
 #if SOFTSUB_KERNEL_AVX || defined(__AVX2__)
@@ -215,13 +221,14 @@ inline void paddedGroup(const ParticleStore& s, std::uint32_t first, float (&x)[
 // `store`: the store's position arrays; n: its size (read once by the caller, not per
 // group).
 // With inner2 (listAligned's), bit c + 8: lane c is also closer than sqrt(inner2).
+template <bool kInner>
 inline std::uint32_t groupNear(const ParticleStore& s, const Candidates& store, std::uint32_t n, std::uint32_t g8,
                                float xi, float yi, float zi, float cut2, float inner2) {
   if (g8 + 8 <= n) [[likely]]
-    return nearMasks(store, g8, xi, yi, zi, cut2, inner2);
+    return nearMasks<kInner>(store, g8, xi, yi, zi, cut2, inner2);
   float x[8], y[8], z[8];
   paddedGroup(s, g8, x, y, z);
-  return nearMasks(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2, inner2);
+  return nearMasks<kInner>(Candidates{x, y, z, nullptr, nullptr}, 0, xi, yi, zi, cut2, inner2);
 }
 
 // A grouped layer's list (PairList::Layer::grouped) for slot i: the aligned groups of 8
@@ -253,7 +260,7 @@ template <bool kInner = false>
   std::uint32_t edge = 0xFFu << (b % 8);
   std::uint32_t a = at;
   for (std::uint32_t g = first; g <= last; ++g) {
-    const std::uint32_t near = groupNear(s, store, n, lo + 8 * g, xi, yi, zi, cut2, inner2);
+    const std::uint32_t near = groupNear<kInner>(s, store, n, lo + 8 * g, xi, yi, zi, cut2, inner2);
     const std::uint32_t lanes = near & edge & (g == last ? lastLanes : 0xFFu);
     edge = 0xFFu;
     if constexpr (kInner)
@@ -1016,11 +1023,13 @@ inline void addSums(Force* __restrict f, const float* __restrict x, const float*
 // Outer windows (PairList::Layer::outer) come in passes of their own, each after a batch
 // of kBatch slots once over a thousand are waiting, and after the layer's last: each
 // slot's end code gives their count, and the slot is written that many times into
-// outerSlots (8 lanes at once, with no branch), so that their pass walks one flat
-// array (a pass after every batch of 8 slots was 4% slower at cutoff 2.0: a loop exit
-// a batch); an outer window with no partner within the cutoff costs its loads and
-// distances and a branch (the same r² and test as forceOverR: exactly the zeros its
-// evaluation would add).
+// outerSlots (one vector store of kLanes copies, and a loop only for a slot with more
+// outer windows than that), so that their pass walks one flat array (a pass after every
+// batch of 8 slots was 4% slower at cutoff 2.0: a loop exit a batch); an outer window
+// with no partner within the cutoff costs its loads and distances and a branch (the
+// same r² and test as forceOverR: exactly the zeros its evaluation would add, for
+// finite positions; a NaN position, which the evaluation would spread to its window's
+// lanes, is left to the blow-up check, which stops the run on it anyway).
 void packedPairForces(const PairList::Layer& layer, const forces::ClosedFormLj& lj, ParticleStore& s,
                       const float* __restrict qx, const float* __restrict qy, const float* __restrict qz,
                       float* __restrict sums, std::size_t stride, std::span<std::atomic<bool>> locks) {
