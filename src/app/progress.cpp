@@ -38,7 +38,7 @@ double ProgressLine::secondsPerFrame() const {
 
 void ProgressLine::begin(std::int64_t frame, const std::string& what) {
   if (!enabled_) return;
-  const std::string where = items_ > 0 ? fmt::format("frame {}/{} (0 of {})", frame, last_, items_)
+  const std::string where = items_ > 0 ? fmt::format("frame {}/{} (1 of {})", frame, last_, items_)
                                        : fmt::format("frame {}/{}", frame, last_);
   std::string line = fmt::format("{} | {} | {}", where, countOf(particles_, "particle"), what);
   width_ = line.size();

@@ -377,7 +377,7 @@ std::optional<double> cubicRestFrom(const std::vector<double>& rests, const forc
 std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near) {
   const double cut = forces::cutoff(f);
   if (!(cut > 0) || !(near > 0) || near >= cut) return std::nullopt;  // no neighbour in reach
-  return cubicRestFrom(cubicRests(f, std::min(cut / 4, near / 2)), f, near);
+  return cubicRestFrom(cubicRests(f, std::max(std::min(cut / 4, near / 4), cut / 64)), f, near);
 }
 
 namespace {
@@ -398,19 +398,28 @@ std::vector<std::string> fillSpacingWarnings(const SceneDesc& d) {
     for (const PairDesc& p : d.interactions.pairs)
       if (p.a == f.name && p.b == f.name) self = &p;
     if (self != nullptr) own = self->interaction.function;
+    // From a quarter of the cutoff or of the finest fill's spacing, whichever is less (a
+    // fill well above its rest finds it below: a review's InteractionDistance 4.5 filled
+    // at 2.5 rests at 0.92), but not below a 64th of the cutoff (the shells counted).
     const double cut = forces::cutoff(own);
     double from = cut / 4;
-    for (const FillDesc& fill : f.fills) from = std::min(from, fill.spacing / 2);
+    for (const FillDesc& fill : f.fills) from = std::min(from, fill.spacing / 4);
+    from = std::max(from, cut / 64);
     const std::vector<double> rests = cubicRests(own, from);
     const std::string force = self != nullptr ? fmt::format("its own <Pair> (line {})", self->line)
                                               : std::string("this fluid's own force");
     const std::string distances = self != nullptr ? std::string("that <Pair>'s distances")
                                                   : std::string("FiniteDistance and InteractionDistance");
     for (const FillDesc& fill : f.fills) {
-      if (fill.surface || !(fill.spacing < cut)) continue;  // a shell; particles out of each other's reach
+      // A shell; particles out of each other's reach; a fill that pulls itself together
+      // finer than the search reaches below it (a cutoff hundreds of times its
+      // spacing): nothing to say.
+      if (fill.surface || !(fill.spacing < cut)) continue;
+      if (fill.spacing < 4 * from * (1 - 1e-9) && cubicVirial(own, fill.spacing) < 0) continue;
       const std::optional<double> rest = cubicRestFrom(rests, own, fill.spacing);
       if (!rest) {
-        if (cubicVirial(own, fill.spacing) < 0 && rests.empty())
+        // Only a function that pushes at no spacing searched collapses the fill.
+        if (rests.empty() && cubicVirial(own, fill.spacing) < 0 && !(cubicVirial(own, from) > 0))
           out.push_back(
               fmt::format("Fluid '{}': the fill at line {} has Spacing {:g}, and {} only pulls such a "
                           "lattice together: it "

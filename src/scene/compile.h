@@ -48,8 +48,8 @@ std::vector<double> cubicRests(const forces::PairFunction& f, double from);
 std::optional<double> cubicRestFrom(const std::vector<double>& rests, const forces::PairFunction& f,
                                     double near);
 /// cubicRestFrom for a lattice of spacing `near`, the rests searched from a quarter of
-/// the cutoff or half of `near` if less; none when `near` is at or beyond the cutoff
-/// (its particles out of each other's reach).
+/// the cutoff or of `near` if less (not below a 64th of the cutoff); none when `near` is
+/// at or beyond the cutoff (its particles out of each other's reach).
 std::optional<double> cubicRestSpacing(const forces::PairFunction& f, double near);
 
 /// The solver's integrator for a scene's.

@@ -656,6 +656,8 @@ TEST(CubicRestSpacing, IsWhereTheNeighboursForcesBalance) {
   ASSERT_TRUE(wide.has_value());
   EXPECT_GT(*wide, 0.8);
   EXPECT_LT(*wide, 1.0);
+  // Filled far above its rest (a review: at 2.5 it was told it collapses).
+  EXPECT_NEAR(cubicRestSpacing(forces::LennardJones{30, 1, -20, 400, 4.5}, 2.5).value_or(0), *wide, 1e-6);
   // No attraction (MinimumForce 0): it swells to where its particles stop pushing, s.
   EXPECT_NEAR(cubicRestSpacing(forces::LennardJones{30, 1, 0, 400, 1.5}, 0.8).value_or(0), 1.0, 1e-6);
   // The default fluid (cutoff 1.5): 12 second neighbours at 1.35-1.41 pull it in. The
@@ -706,6 +708,14 @@ TEST(CompileWarnings, NamesAFillFarFromItsFluidsRestSpacing) {
                  "<ParticleSize>0.8</ParticleSize><Fill><Shape>box</Shape><Min>-3 0 -3</Min><Max>3 2 3</Max>"
                  "<Spacing>0.8</Spacing></Fill></Fluid>");
   ASSERT_EQ(mud.size(), 1u) << fmt::format("{}", fmt::join(mud, "\n"));
+  // Far above its rest, with a long reach: shrinks (it was told it collapses).
+  const std::vector<std::string> wide = warningsOf(
+      kBox +
+      "<Fluid><Name>w</Name><InteractionDistance>4.5</InteractionDistance><ParticleSize>2.5</ParticleSize>"
+      "<Fill><Shape>box</Shape><Min>-5 0 -5</Min><Max>5 5 5</Max><Spacing>2.5</Spacing></Fill></Fluid>");
+  ASSERT_EQ(wide.size(), 1u) << fmt::format("{}", fmt::join(wide, "\n"));
+  EXPECT_NE(wide[0].find("at rest about 0.924 apart, so it shrinks to about 0.05"), std::string::npos)
+      << wide[0];
   EXPECT_NE(mud[0].find("so it swells by about 80% in volume"), std::string::npos) << mud[0];
   // A Pair of the fluid with itself replaces the function the rest is worked out from:
   // the jelly's shape scaled by 1.185 rests at 1.12.
