@@ -375,10 +375,21 @@ int renderCommand(const RenderOptions& o) {
     observer.emplace(*maker, cameraOf(loaded.desc.camera), out, sceneName, range, surfaceSettings);
     pictures = &*observer;
     FrameObserver* observers[] = {pictures};
-    ProgressLine progress(chatty, lastFrame, particles);
+    // The frames drawn are the items (frame 0 among them when in range): the rate and
+    // the ETA are theirs, simulation and drawing; the frames simulated on the way to
+    // the range say so (a review: their fast frames made the ETA a fraction of the time
+    // the pictures still took).
+    const auto drawn = static_cast<std::size_t>(lastFrame - range.first + 1);
+    ProgressLine progress(chatty, lastFrame, particles, drawn);
     solver::FrameLoopHooks hooks;
     hooks.stop = &stop;
-    hooks.onProgress = [&](const solver::FrameProgress& p) { progress.update(p); };
+    hooks.onProgress = [&](const solver::FrameProgress& p) {
+      if (p.frame < range.first)
+        return progress.note(p.frame, fmt::format("simulating to frame {}", range.first));
+      solver::FrameProgress item = p;
+      item.initial = false;  // frame 0 in range is a picture like any other
+      progress.update(item);
+    };
     const bool complete = solver::runFrames(sim, lastFrame, observers, hooks);
     progress.end();
     if (!complete) {

@@ -48,6 +48,21 @@ void ProgressLine::begin(std::int64_t frame, const std::string& what) {
   lastDraw_ = std::chrono::steady_clock::now();
 }
 
+void ProgressLine::note(std::int64_t frame, const std::string& what) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (drawn_ && now - lastDraw_ < std::chrono::milliseconds(100)) return;
+  std::string line =
+      fmt::format("frame {}/{} | {} | {}", frame, last_, countOf(particles_, "particle"), what);
+  const std::size_t len = line.size();
+  if (len < width_) line.append(width_ - len, ' ');
+  width_ = len;
+  fmt::print(stderr, "\r{}", line);
+  std::fflush(stderr);
+  drawn_ = true;
+  lastDraw_ = now;
+}
+
 void ProgressLine::update(const solver::FrameProgress& p) {
   if (p.initial) {
     // Frame 0, written before any stepping: its own line, and not in the rate (with

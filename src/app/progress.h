@@ -25,6 +25,9 @@ class ProgressLine {
   /// Before the first frame: `frame F/LAST | N particles | <what>` (a run's frame 0 can
   /// take long: a million particles' surfaces, a large mesh).
   void begin(std::int64_t frame, const std::string& what);
+  /// begin's line for a frame that is not an item (render: frames simulated before the
+  /// range drawn), redrawn at most ten times a second.
+  void note(std::int64_t frame, const std::string& what);
   /// After each completed frame (the frame loop's onProgress hook); frame 0 handed out
   /// before any stepping (FrameProgress::initial) is drawn, and counts neither in the
   /// frames nor in the rate.

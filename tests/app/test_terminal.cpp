@@ -51,6 +51,22 @@ TEST(Terminal, RunDrawsARedrawnProgressLineAndASummary) {
   EXPECT_EQ(listFrameFiles(tmp / "o").size(), 4u);
 }
 
+// render of a scene over a range of frames: the frames simulated on the way say so, and
+// the count, rate and ETA are the pictures' (frames only simulated made the ETA a
+// fraction of the time left: a review).
+TEST(Terminal, RenderOfASceneCountsThePicturesOfItsRange) {
+  TempDir tmp;
+  const RunResult r =
+      runSoftsubInTerminal("render " + quote(examplesDir() / "two-fluids.scene") +
+                               " --frames 2:3 --width 64 --height 36 --out " + quote(tmp / "p"),
+                           tmp.path());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("\rframe 0/3 | 1,728 particles | simulating to frame 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\rframe 2/3 (1 of 2) | 1,728 particles | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\rframe 3/3 (2 of 2) | 1,728 particles | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("done: 2 pictures written to "), std::string::npos) << r.out;
+}
+
 // render of a recorded folder at a terminal: the progress runs to the last frame of the
 // range drawn, with the recording's particles (it showed "frame 0/11 | 0 particles" and
 // was never redrawn: a review).
