@@ -256,12 +256,15 @@ int runCommand(const RunOptions& o) {
   // The scene's name names every file of the run and the preview: with neither, no file.
   checkOutputNames(loaded, formats, anyFormat(formats) || o.preview);
   const std::filesystem::path outDir = o.out.empty() ? loaded.defaultOutDir : std::filesystem::path(o.out);
-  if (anyFormat(formats)) {
+  // The folder's other files this run must not overwrite: checked now, and again once
+  // the run holds the folder's lock.
+  const auto checkFolder = [&] {
     checkInputsKept(loaded, formats, outDir);
     std::vector<std::string> fluidNames;
     for (const scene::FluidDesc& f : loaded.desc.fluids) fluidNames.push_back(f.name);
     refuseOtherScenesFiles(outDir, loaded.name, formats, fluidNames);
-  }
+  };
+  if (anyFormat(formats)) checkFolder();
   std::int64_t lastFrame = loaded.desc.simulation.frames;
   if (o.stopRecordingAt >= 0) lastFrame = std::min(lastFrame, o.stopRecordingAt);
   // Maya reads a PDC file's time from its name in 32-bit ticks (6000 a second).
@@ -354,16 +357,16 @@ int runCommand(const RunOptions& o) {
   // One run at a time in a folder: a second one's fresh start would delete this one's
   // files under it (a review: the first run then failed as if the disk had, or ended
   // with success over files that were no longer its own).
+  const auto lockOut = [&](std::optional<cache::FolderLock>& into) {
+    into.emplace(outDir, "run", InputLocation{"command line", 0, "--out"},
+                 "wait for it to end, or write into another folder (--out)");
+  };
   std::optional<cache::FolderLock> lock;
   if (anyFormat(formats)) {
-    lock.emplace(outDir, "run", InputLocation{"command line", 0, "--out"},
-                 "wait for it to end, or write into another folder (--out)");
+    lockOut(lock);
     // Checked again now that no other writer can change the folder (a run of another
     // scene may have written it since the checks before the scene was compiled).
-    checkInputsKept(loaded, formats, outDir);
-    std::vector<std::string> fluidNames;
-    for (const scene::FluidDesc& f : loaded.desc.fluids) fluidNames.push_back(f.name);
-    refuseOtherScenesFiles(outDir, loaded.name, formats, fluidNames);
+    checkFolder();
   }
   if (anyFormat(formats)) {
     if (o.resume) {
@@ -520,9 +523,7 @@ int runCommand(const RunOptions& o) {
       PictureMaker maker(*view, kPreviewWidth, kPreviewHeight);
       // With --formats none this run holds no lock yet: not into a folder another one writes.
       std::optional<cache::FolderLock> previewLock;
-      if (!lock)
-        previewLock.emplace(outDir, "run", InputLocation{"command line", 0, "--out"},
-                            "wait for it to end, or write into another folder (--out)");
+      if (!lock) lockOut(previewLock);
       cache::ensureDirectory(outDir);
       maker.write(picture, sim.snapshot(), cameraOf(loaded.desc.camera));
       previewNote = ", preview: " + picture.string();

@@ -36,41 +36,37 @@ double ProgressLine::secondsPerFrame() const {
   return done_ > 0 ? busySeconds_ / static_cast<double>(done_) : 0.0;
 }
 
-void ProgressLine::begin(std::int64_t frame, const std::string& what) {
-  if (!enabled_) return;
-  const std::string where = items_ > 0 ? fmt::format("frame {}/{} (1 of {})", frame, last_, items_)
-                                       : fmt::format("frame {}/{}", frame, last_);
-  std::string line = fmt::format("{} | {} | {}", where, countOf(particles_, "particle"), what);
-  width_ = line.size();
+std::string ProgressLine::head(std::int64_t frame, std::size_t item) const {
+  const std::string where = item > 0 ? fmt::format("frame {}/{} ({} of {})", frame, last_, item, items_)
+                                     : fmt::format("frame {}/{}", frame, last_);
+  return fmt::format("{} | {}", where, countOf(particles_, "particle"));
+}
+
+void ProgressLine::show(std::string line) {
+  const std::size_t len = line.size();
+  if (len < width_) line.append(width_ - len, ' ');  // clear what a longer line left
+  width_ = len;
   fmt::print(stderr, "\r{}", line);
   std::fflush(stderr);
   drawn_ = true;
   lastDraw_ = std::chrono::steady_clock::now();
 }
 
+void ProgressLine::begin(std::int64_t frame, const std::string& what) {
+  if (enabled_) show(fmt::format("{} | {}", head(frame, items_ > 0 ? 1 : 0), what));
+}
+
 void ProgressLine::note(std::int64_t frame, const std::string& what) {
-  if (!enabled_) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (drawn_ && now - lastDraw_ < std::chrono::milliseconds(100)) return;
-  std::string line =
-      fmt::format("frame {}/{} | {} | {}", frame, last_, countOf(particles_, "particle"), what);
-  const std::size_t len = line.size();
-  if (len < width_) line.append(width_ - len, ' ');
-  width_ = len;
-  fmt::print(stderr, "\r{}", line);
-  std::fflush(stderr);
-  drawn_ = true;
-  lastDraw_ = now;
+  if (!enabled_ || (drawn_ && std::chrono::steady_clock::now() - lastDraw_ < std::chrono::milliseconds(100)))
+    return;
+  show(fmt::format("{} | {}", head(frame, 0), what));
 }
 
 void ProgressLine::update(const solver::FrameProgress& p) {
   if (p.initial) {
     // Frame 0, written before any stepping: its own line, and not in the rate (with
     // surfaces it costs a frame's meshing, but no simulation).
-    if (enabled_ && p.frame < last_) {
-      lastDraw_ = std::chrono::steady_clock::now();
-      draw(p.frame);
-    }
+    if (enabled_ && p.frame < last_) draw(p.frame);
     return;
   }
   ++done_;
@@ -78,30 +74,20 @@ void ProgressLine::update(const solver::FrameProgress& p) {
   if (!enabled_) return;
   // Redraw at most ten times a second, and always for frame 0, the first frame simulated
   // (or item) and the last.
-  const auto now = std::chrono::steady_clock::now();
-  if (p.frame < last_ && !p.initial && done_ > 1 && drawn_ &&
-      now - lastDraw_ < std::chrono::milliseconds(100))
+  if (p.frame < last_ && done_ > 1 && drawn_ &&
+      std::chrono::steady_clock::now() - lastDraw_ < std::chrono::milliseconds(100))
     return;
-  lastDraw_ = now;
   draw(p.frame);
 }
 
 void ProgressLine::draw(std::int64_t frame) {
   const double left = items_ > 0 ? static_cast<double>(items_) - static_cast<double>(done_)
                                  : static_cast<double>(last_ - frame);
-  const std::string where = items_ > 0 ? fmt::format("frame {}/{} ({} of {})", frame, last_, done_, items_)
-                                       : fmt::format("frame {}/{}", frame, last_);
+  const std::string where = head(frame, items_ > 0 ? static_cast<std::size_t>(done_) : 0);
   // Frame 0 alone (nothing simulated yet): no rate to give.
-  std::string line =
-      done_ == 0 ? fmt::format("{} | {} | simulating", where, countOf(particles_, "particle"))
-                 : fmt::format("{} | {} | {:.1f} ms/frame | ETA {}", where, countOf(particles_, "particle"),
-                               secondsPerFrame() * 1e3, clockTime(left * secondsPerFrame()));
-  const std::size_t len = line.size();
-  if (len < width_) line.append(width_ - len, ' ');  // clear what a longer line left
-  width_ = len;
-  fmt::print(stderr, "\r{}", line);
-  std::fflush(stderr);
-  drawn_ = true;
+  show(done_ == 0 ? where + " | simulating"
+                  : fmt::format("{} | {:.1f} ms/frame | ETA {}", where, secondsPerFrame() * 1e3,
+                                clockTime(left * secondsPerFrame())));
 }
 
 void ProgressLine::end() {

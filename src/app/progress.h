@@ -42,6 +42,10 @@ class ProgressLine {
 
  private:
   void draw(std::int64_t frame);
+  /// `frame F/LAST (K of N) | P particles` (without the count for item 0).
+  [[nodiscard]] std::string head(std::int64_t frame, std::size_t item) const;
+  /// Draws `line` over the last one, padded to clear it.
+  void show(std::string line);
 
   bool enabled_;
   bool drawn_ = false;

@@ -394,9 +394,7 @@ std::vector<std::string> fillSpacingWarnings(const SceneDesc& d) {
   for (const FluidDesc& f : d.fluids) {
     if (f.fills.empty()) continue;
     forces::PairFunction own = fluid::ownFunction(f.params);
-    const PairDesc* self = nullptr;
-    for (const PairDesc& p : d.interactions.pairs)
-      if (p.a == f.name && p.b == f.name) self = &p;
+    const PairDesc* self = findPair(d.interactions, f.name, f.name);
     if (self != nullptr) own = self->interaction.function;
     // From a quarter of the cutoff or of the finest fill's spacing, whichever is less (a
     // fill well above its rest finds it below: a review's InteractionDistance 4.5 filled
